@@ -1,0 +1,148 @@
+# povray-fc: build POV-Ray 3.7.0.10 from Debian's source package with our patch
+# series and our frame-coherence library, the way Debian builds it.
+#
+#   make deps   install every Debian package we need (root, idempotent)
+#   make        build build/bin/povray-fc (and later the coordinator)
+#   make test   build, then run unit and integration tests
+#   make demo   render a short animation into out/
+#   make clean  remove build/ and out/ (keeps the downloaded source cache)
+
+SHELL := /bin/bash
+.SHELLFLAGS := -eu -o pipefail -c
+.DEFAULT_GOAL := all
+MAKEFLAGS += --no-builtin-rules
+
+TOP       := $(abspath $(dir $(lastword $(MAKEFILE_LIST))))
+BUILD     := $(TOP)/build
+STAMPS    := $(BUILD)/stamps
+BIN       := $(BUILD)/bin
+JOBS      ?= $(shell nproc)
+
+# Debian's source package, fetched once into a cache outside the tracked tree.
+POV_DEB_VERSION := 1:3.7.0.10-2
+POV_UPSTREAM    := 3.7.0.10
+SRC_CACHE ?= $(HOME)/.cache/povray-fc/debian-source
+POV_DSC   := $(SRC_CACHE)/povray_3.7.0.10-2.dsc
+POV_TREE  := $(BUILD)/povray
+
+# Our own code: the fc engine library, built with CMake, unit-tested with ctest.
+FC_BUILD  := $(BUILD)/povray-fc
+FC_LIB    := $(FC_BUILD)/libpovrayfc.a
+FC_SOURCES := $(shell find $(TOP)/povray-fc -type f \( -name '*.cpp' -o -name '*.h' -o -name 'CMakeLists.txt' \) 2>/dev/null)
+
+PATCHES   := $(TOP)/patches/series $(wildcard $(TOP)/patches/*.patch)
+
+# ccache: one cache for every clone. base_dir makes paths relative and nohashdir
+# drops the working directory from -g builds, so a fresh clone (CI) hits the cache.
+export CCACHE_DIR      ?= $(HOME)/.ccache
+export CCACHE_BASEDIR  := $(TOP)
+export CCACHE_NOHASHDIR := 1
+export CCACHE_MAXSIZE  ?= 5G
+
+# Debian's flags (debian/rules: hardening=+all, then -O3, no -ffast-math).
+# -ffile-prefix-map is dropped: it only names this checkout's path in debug info,
+# and keeping it would defeat ccache across clones.
+DEB_FLAGS  = DEB_BUILD_MAINT_OPTIONS=hardening=+all dpkg-buildflags --get
+strip_map  = $(filter-out -ffile-prefix-map=%,$(1))
+POV_CXXFLAGS  := $(call strip_map,$(shell $(DEB_FLAGS) CXXFLAGS 2>/dev/null)) -O3
+POV_CPPFLAGS  := $(shell $(DEB_FLAGS) CPPFLAGS 2>/dev/null) -I$(TOP)/povray-fc/include
+POV_LDFLAGS   := $(shell $(DEB_FLAGS) LDFLAGS 2>/dev/null)
+COMPILED_BY   := povray-fc (frame-coherent POV-Ray, built from Debian povray $(POV_DEB_VERSION))
+
+PYTHON := /usr/bin/python3
+
+.PHONY: all deps test unit-test integration-test demo clean distclean
+.DELETE_ON_ERROR:
+
+all: $(BIN)/povray-fc
+
+deps:
+	$(TOP)/scripts/install-deps.sh
+
+# --- Debian source -----------------------------------------------------------
+
+$(POV_DSC):
+	@command -v dpkg-source >/dev/null || { echo "make: dpkg-source missing: run 'make deps' first" >&2; exit 1; }
+	mkdir -p $(SRC_CACHE)
+	cd $(SRC_CACHE) && apt-get source --download-only povray=$(POV_DEB_VERSION) \
+	  || { echo "make: 'apt-get source povray' failed: run 'make deps' (adds the deb-src entry)" >&2; exit 1; }
+
+# Unpack with Debian's own patches applied, then prepare it as debian/rules does.
+$(STAMPS)/unpacked: $(POV_DSC)
+	rm -rf $(POV_TREE) $(STAMPS)
+	mkdir -p $(STAMPS)
+	dpkg-source --no-check -x $(POV_DSC) $(POV_TREE) >/dev/null
+	cd $(POV_TREE)/unix/config && for ax in *.m4; do \
+	  if [ ! -h "$$ax" ] && [ -f "/usr/share/aclocal/$$ax" ]; then mv "$$ax" "$$ax.dist"; ln -s "/usr/share/aclocal/$$ax"; fi; done
+	mv $(POV_TREE)/libraries $(POV_TREE)/libraries.donotuse
+	touch $@
+
+# Our series goes on top of Debian's with quilt. Re-applying after a patch change
+# pops everything first; ccache turns the resulting recompiles into cache hits.
+$(STAMPS)/patched: $(STAMPS)/unpacked $(PATCHES)
+	cd $(POV_TREE) && export QUILT_PATCHES=$(TOP)/patches QUILT_PC=.pc-povray-fc && \
+	  { [ ! -d .pc-povray-fc ] || quilt pop -a -q -f >/dev/null || [ $$? = 2 ]; } && \
+	  { quilt push -a -q >/dev/null || [ $$? = 2 ]; }
+	touch $@
+
+# Flags that, when changed, must re-run configure.
+$(STAMPS)/configure-args: FORCE
+	@mkdir -p $(STAMPS)
+	@echo '$(POV_CXXFLAGS) | $(POV_CPPFLAGS) | $(POV_LDFLAGS) | $(FC_LIB) | $(COMPILED_BY)' > $@.new
+	@if cmp -s $@.new $@; then rm $@.new; else mv $@.new $@; fi
+
+$(STAMPS)/configured: $(STAMPS)/patched $(STAMPS)/configure-args
+	cd $(POV_TREE)/unix && ./prebuild.sh >$(BUILD)/prebuild.log 2>&1 \
+	  || { echo "make: unix/prebuild.sh failed, see $(BUILD)/prebuild.log" >&2; exit 1; }
+	cd $(POV_TREE) && ./configure --prefix=/usr --sysconfdir=/etc \
+	  --disable-optimiz --disable-strip \
+	  --with-boost-thread=boost_thread \
+	  CC="ccache gcc" CXX="ccache g++" \
+	  COMPILED_BY="$(COMPILED_BY)" \
+	  CXXFLAGS="$(POV_CXXFLAGS)" CPPFLAGS="$(POV_CPPFLAGS)" LDFLAGS="$(POV_LDFLAGS)" \
+	  LIBS="$(FC_LIB)" >$(BUILD)/configure.log 2>&1 \
+	  || { echo "make: configure failed, see $(BUILD)/configure.log" >&2; exit 1; }
+	touch $@
+
+# --- our library -------------------------------------------------------------
+
+$(FC_BUILD)/CMakeCache.txt: $(TOP)/povray-fc/CMakeLists.txt
+	cmake -S $(TOP)/povray-fc -B $(FC_BUILD) -DCMAKE_BUILD_TYPE=Release \
+	  -DCMAKE_CXX_COMPILER_LAUNCHER=ccache \
+	  -DCMAKE_CXX_FLAGS="$(POV_CXXFLAGS) $(filter-out -I%,$(POV_CPPFLAGS))" >/dev/null
+
+$(FC_LIB): $(FC_BUILD)/CMakeCache.txt $(FC_SOURCES)
+	cmake --build $(FC_BUILD) -j$(JOBS) --target povrayfc
+	touch $@
+
+# --- the binary --------------------------------------------------------------
+
+# POV-Ray's Makefiles do not know our library: relink when it is newer.
+$(BIN)/povray-fc: $(STAMPS)/configured $(FC_LIB) FORCE
+	@if [ -e $(POV_TREE)/unix/povray ] && [ $(FC_LIB) -nt $(POV_TREE)/unix/povray ]; then rm $(POV_TREE)/unix/povray; fi
+	$(MAKE) -C $(POV_TREE) -j$(JOBS) >$(BUILD)/povray-make.log 2>&1 \
+	  || { tail -30 $(BUILD)/povray-make.log >&2; echo "make: POV-Ray build failed, see $(BUILD)/povray-make.log" >&2; exit 1; }
+	mkdir -p $(BIN)
+	if ! cmp -s $(POV_TREE)/unix/povray $@; then cp $(POV_TREE)/unix/povray $@.tmp && mv $@.tmp $@; fi
+
+FORCE:
+
+# --- tests and demo ----------------------------------------------------------
+
+test: unit-test integration-test
+
+unit-test: $(FC_BUILD)/CMakeCache.txt
+	cmake --build $(FC_BUILD) -j$(JOBS)
+	cd $(FC_BUILD) && ctest --output-on-failure
+
+integration-test: all
+	cd $(TOP) && $(PYTHON) -m pytest -q tests
+
+demo: all
+	$(TOP)/scripts/demo.sh
+
+clean:
+	rm -rf $(BUILD) $(TOP)/out
+
+distclean: clean
+	rm -rf $(SRC_CACHE)

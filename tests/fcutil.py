@@ -1,0 +1,55 @@
+"""Shared helpers for povray-fc's integration tests: run renders, read and compare pixels."""
+import os
+import subprocess
+from pathlib import Path
+
+import numpy as np
+import OpenImageIO as oiio
+
+TOP = Path(__file__).resolve().parent.parent
+BIN = TOP / "build" / "bin"
+POVRAY_FC = BIN / "povray-fc"
+DEBIAN_POVRAY = Path("/usr/bin/povray")
+SCENES = TOP / "scenes"
+
+
+def render(binary, scene, out_file, *options, cwd=None, timeout=600, threads=None):
+    """Render `scene` with `binary` into `out_file` (Targa); returns the CompletedProcess.
+
+    Display and pause are off and the render runs without a terminal, as in CI.
+    """
+    args = [str(binary), f"+I{scene}", f"+O{out_file}", "+FT", "-D", "-P", "-V"]
+    if threads is not None:
+        args.append(f"+WT{threads}")
+    args += list(options)
+    return subprocess.run(args, cwd=cwd or Path(scene).parent, capture_output=True,
+                          text=True, timeout=timeout, stdin=subprocess.DEVNULL)
+
+
+def read_pixels(path):
+    """Pixels of an image file as a uint8 array (height, width, channels), via OpenImageIO."""
+    inp = oiio.ImageInput.open(str(path))
+    if inp is None:
+        raise IOError(f"{path}: {oiio.geterror()}")
+    try:
+        pixels = inp.read_image(0, 0, 0, inp.spec().nchannels, oiio.UINT8)
+    finally:
+        inp.close()
+    if pixels is None:
+        raise IOError(f"{path}: {oiio.geterror()}")
+    return np.asarray(pixels)
+
+
+def pixel_difference(path_a, path_b):
+    """(pixels that differ, largest channel difference) between two images of equal size."""
+    a = read_pixels(path_a).astype(np.int16)
+    b = read_pixels(path_b).astype(np.int16)
+    if a.shape != b.shape:
+        raise ValueError(f"size differs: {path_a} {a.shape} vs {path_b} {b.shape}")
+    diff = np.abs(a - b)
+    return int(np.count_nonzero(diff.max(axis=2))), int(diff.max())
+
+
+def assert_same_pixels(path_a, path_b):
+    differing, largest = pixel_difference(path_a, path_b)
+    assert differing == 0, f"{path_a} vs {path_b}: {differing} pixels differ, by up to {largest}"
