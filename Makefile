@@ -38,6 +38,9 @@ export CCACHE_DIR      ?= $(HOME)/.ccache
 export CCACHE_BASEDIR  := $(TOP)
 export CCACHE_NOHASHDIR := 1
 export CCACHE_MAXSIZE  ?= 5G
+# ccache's compiler wrappers: configure then records the plain compiler name
+# (POV-Ray prints it in its banner) while every compile still goes through ccache.
+CCACHE_PATH := /usr/lib/ccache
 
 # Debian's flags (debian/rules: hardening=+all, then -O3, no -ffast-math).
 # -ffile-prefix-map is dropped: it only names this checkout's path in debug info,
@@ -56,12 +59,14 @@ PYTHON := /usr/bin/python3
 
 all: $(BIN)/povray-fc
 
+# Checks in a fraction of a second when everything is installed, so the build
+# targets run it first: on a fresh machine `make demo` or `make test` is all it takes.
 deps:
-	$(TOP)/scripts/install-deps.sh
+	@$(TOP)/scripts/install-deps.sh
 
 # --- Debian source -----------------------------------------------------------
 
-$(POV_DSC):
+$(POV_DSC): | deps
 	@command -v dpkg-source >/dev/null || { echo "make: dpkg-source missing: run 'make deps' first" >&2; exit 1; }
 	mkdir -p $(SRC_CACHE)
 	cd $(SRC_CACHE) && apt-get source --download-only povray=$(POV_DEB_VERSION) \
@@ -88,16 +93,18 @@ $(STAMPS)/patched: $(STAMPS)/unpacked $(PATCHES)
 # Flags that, when changed, must re-run configure.
 $(STAMPS)/configure-args: FORCE
 	@mkdir -p $(STAMPS)
-	@echo '$(POV_CXXFLAGS) | $(POV_CPPFLAGS) | $(POV_LDFLAGS) | $(FC_LIB) | $(COMPILED_BY)' > $@.new
+	@echo 'g++ via $(CCACHE_PATH) | $(POV_CXXFLAGS) | $(POV_CPPFLAGS) | $(POV_LDFLAGS) | $(FC_LIB) | $(COMPILED_BY)' > $@.new
 	@if cmp -s $@.new $@; then rm $@.new; else mv $@.new $@; fi
 
-$(STAMPS)/configured: $(STAMPS)/patched $(STAMPS)/configure-args
+# Configure once per set of flags. Our patches never touch the build system (our
+# code is a separate library), so a patch change does not re-run configure.
+$(STAMPS)/configured: $(STAMPS)/unpacked $(STAMPS)/configure-args | $(STAMPS)/patched
 	cd $(POV_TREE)/unix && ./prebuild.sh >$(BUILD)/prebuild.log 2>&1 \
 	  || { echo "make: unix/prebuild.sh failed, see $(BUILD)/prebuild.log" >&2; exit 1; }
-	cd $(POV_TREE) && ./configure --prefix=/usr --sysconfdir=/etc \
+	cd $(POV_TREE) && PATH=$(CCACHE_PATH):$$PATH ./configure --prefix=/usr --sysconfdir=/etc \
 	  --disable-optimiz --disable-strip \
 	  --with-boost-thread=boost_thread \
-	  CC="ccache gcc" CXX="ccache g++" \
+	  CC=gcc CXX=g++ \
 	  COMPILED_BY="$(COMPILED_BY)" \
 	  CXXFLAGS="$(POV_CXXFLAGS)" CPPFLAGS="$(POV_CPPFLAGS)" LDFLAGS="$(POV_LDFLAGS)" \
 	  LIBS="$(FC_LIB)" >$(BUILD)/configure.log 2>&1 \
@@ -106,7 +113,7 @@ $(STAMPS)/configured: $(STAMPS)/patched $(STAMPS)/configure-args
 
 # --- our library -------------------------------------------------------------
 
-$(FC_BUILD)/CMakeCache.txt: $(TOP)/povray-fc/CMakeLists.txt
+$(FC_BUILD)/CMakeCache.txt: $(TOP)/povray-fc/CMakeLists.txt | deps
 	cmake -S $(TOP)/povray-fc -B $(FC_BUILD) -DCMAKE_BUILD_TYPE=Release \
 	  -DCMAKE_CXX_COMPILER_LAUNCHER=ccache \
 	  -DCMAKE_CXX_FLAGS="$(POV_CXXFLAGS) $(filter-out -I%,$(POV_CPPFLAGS))" >/dev/null
@@ -118,9 +125,9 @@ $(FC_LIB): $(FC_BUILD)/CMakeCache.txt $(FC_SOURCES)
 # --- the binary --------------------------------------------------------------
 
 # POV-Ray's Makefiles do not know our library: relink when it is newer.
-$(BIN)/povray-fc: $(STAMPS)/configured $(FC_LIB) FORCE
+$(BIN)/povray-fc: $(STAMPS)/patched $(STAMPS)/configured $(FC_LIB) FORCE
 	@if [ -e $(POV_TREE)/unix/povray ] && [ $(FC_LIB) -nt $(POV_TREE)/unix/povray ]; then rm $(POV_TREE)/unix/povray; fi
-	$(MAKE) -C $(POV_TREE) -j$(JOBS) >$(BUILD)/povray-make.log 2>&1 \
+	PATH=$(CCACHE_PATH):$$PATH $(MAKE) -C $(POV_TREE) -j$(JOBS) >$(BUILD)/povray-make.log 2>&1 \
 	  || { tail -30 $(BUILD)/povray-make.log >&2; echo "make: POV-Ray build failed, see $(BUILD)/povray-make.log" >&2; exit 1; }
 	mkdir -p $(BIN)
 	if ! cmp -s $(POV_TREE)/unix/povray $@; then cp $(POV_TREE)/unix/povray $@.tmp && mv $@.tmp $@; fi
@@ -131,12 +138,12 @@ FORCE:
 
 test: unit-test integration-test
 
-unit-test: $(FC_BUILD)/CMakeCache.txt
+unit-test: $(FC_BUILD)/CMakeCache.txt | deps
 	cmake --build $(FC_BUILD) -j$(JOBS)
 	cd $(FC_BUILD) && ctest --output-on-failure
 
 integration-test: all
-	cd $(TOP) && $(PYTHON) -m pytest -q tests
+	cd $(TOP) && $(PYTHON) -m pytest -q -p no:cacheprovider tests
 
 demo: all
 	$(TOP)/scripts/demo.sh

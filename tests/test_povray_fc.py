@@ -1,0 +1,53 @@
+"""The povray-fc binary: it names itself, renders our scenes, and fails loudly on bad input."""
+import subprocess
+
+import numpy as np
+
+from fcutil import POVRAY_FC, SCENES, read_pixels, render
+
+
+def test_version_names_povray_fc_and_its_pov_ray():
+    done = subprocess.run([str(POVRAY_FC), "--version"], capture_output=True, text=True)
+    # POV-Ray may warn about a missing user povray.conf first; the version line follows.
+    lines = [line for line in done.stderr.splitlines() if not line.startswith("povray: ")]
+    assert lines and lines[0].startswith("povray-fc "), done.stderr
+    assert "POV-Ray 3.7.0.10" in lines[0]
+
+
+def test_banner_names_povray_fc(tmp_path):
+    done = render(POVRAY_FC, SCENES / "tiny" / "tiny.pov", tmp_path / "t.tga", "+W16", "+H12", "+V")
+    assert done.returncode == 0, done.stderr
+    banner = " ".join(done.stderr.split())  # the banner wraps at 80 columns
+    assert "povray-fc 0.1.0, Persistence of Vision(tm) Ray Tracer Version 3.7.0.10" in banner
+
+
+def test_renders_demo_animation_frames(tmp_path):
+    ini = SCENES / "demo" / "demo.ini"
+    done = subprocess.run([str(POVRAY_FC), str(ini), "+KFF3", f"+O{tmp_path}/demo", "-D", "-P", "-V"],
+                          cwd=ini.parent, capture_output=True, text=True, timeout=300)
+    assert done.returncode == 0, done.stderr
+    # POV-Ray numbers frames with as many digits as the final frame has.
+    frames = [read_pixels(tmp_path / f"demo{n}.tga") for n in (1, 2, 3)]
+    for pixels in frames:
+        assert pixels.shape == (240, 320, 3)
+        # A real picture: many distinct colours, not a blank or single-colour frame.
+        assert len(np.unique(pixels.reshape(-1, 3), axis=0)) > 1000
+    # The ball moves, so consecutive frames differ, but only in part of the picture.
+    changed = np.count_nonzero(np.any(frames[0] != frames[1], axis=2))
+    assert 0 < changed < 0.5 * 320 * 240
+
+
+def test_missing_scene_fails_with_its_name(tmp_path):
+    done = render(POVRAY_FC, tmp_path / "no-such-scene.pov", tmp_path / "x.tga", cwd=tmp_path)
+    assert done.returncode != 0
+    assert "no-such-scene.pov" in done.stderr
+    assert not (tmp_path / "x.tga").exists()
+
+
+def test_parse_error_names_file_and_line(tmp_path):
+    scene = tmp_path / "broken.pov"
+    scene.write_text("camera { location <0,0,-3> look_at 0 }\nsphere { 0, 1 pigment { colour rgb 1 }\n")
+    done = render(POVRAY_FC, scene, tmp_path / "broken.tga", cwd=tmp_path)
+    assert done.returncode != 0
+    assert "broken.pov" in done.stderr and "Parse Error" in done.stderr
+    assert not (tmp_path / "broken.tga").exists()
