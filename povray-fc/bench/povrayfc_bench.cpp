@@ -1,0 +1,196 @@
+// Micro-benchmark (not a test): walker speed, dependency store size and DirtyPixels time.
+//
+// The "scene" is synthetic but shaped like a POV-Ray frame: a 64^3 grid over [-10,10]^3, a
+// camera in front of it, a floor and a few spheres, lights outside the grid. Each pixel
+// records its camera ray to the first hit and a shadow ray to the light (~80 voxels per
+// pixel); the "heavy" run uses two lights and one mirror bounce off every surface (~150).
+#include <malloc.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <random>
+#include <thread>
+#include <vector>
+
+#include "povrayfc/change_set.h"
+#include "povrayfc/dependency_store.h"
+#include "povrayfc/segment_walker.h"
+
+using namespace povrayfc;
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+double Seconds(Clock::time_point a, Clock::time_point b) { return std::chrono::duration<double>(b - a).count(); }
+
+double Dot(const Vec3 &a, const Vec3 &b) { return a.x * b.x + a.y * b.y + a.z * b.z; }
+Vec3 Normalize(const Vec3 &v) { return (1.0 / std::sqrt(Dot(v, v))) * v; }
+
+struct Sphere {
+    Vec3 c;
+    double r;
+};
+
+const Sphere kSpheres[] = {{{-4, -2, 2}, 3}, {{3.5, -3, -1}, 2}, {{1, -1, 6}, 4}, {{6, -4, -6}, 1}};
+const double kFloorY = -5;
+const Vec3 kLight{25, 30, -25};
+const Vec3 kLight2{-30, 20, 5};
+const Vec3 kEye{0, 3, -22};
+const int kW = 1920, kH = 1080;
+
+// Nearest hit along o + t d, t > 1e-6; returns t (inf if none) and the normal.
+double Trace(const Vec3 &o, const Vec3 &d, Vec3 &n) {
+    double best = INFINITY;
+    for (const Sphere &s : kSpheres) {
+        Vec3 oc = o - s.c;
+        double b = Dot(oc, d), c = Dot(oc, oc) - s.r * s.r, disc = b * b - c;
+        if (disc < 0) continue;
+        double t = -b - std::sqrt(disc);
+        if (t < 1e-6) t = -b + std::sqrt(disc);
+        if (t > 1e-6 && t < best) {
+            best = t;
+            n = Normalize(o + t * d - s.c);
+        }
+    }
+    if (d.y < 0) {
+        double t = (kFloorY - o.y) / d.y;
+        if (t > 1e-6 && t < best) {
+            best = t;
+            n = Vec3{0, 1, 0};
+        }
+    }
+    return best;
+}
+
+// Records the pixel's segments into rec: the camera ray to its first hit and a shadow ray
+// to each light; with `heavy`, two lights and mirror rays (depth 2) off every surface.
+void RecordPixel(const VoxelGrid &g, int px, int py, bool heavy, PixelRecorder &rec) {
+    auto add = [&](std::uint32_t v) { rec.Add(v); };
+    double fx = (px + 0.5) / kW * 2 - 1, fy = 1 - (py + 0.5) / kH * 2;
+    Vec3 d = Normalize(Vec3{fx * 0.4 * kW / kH, fy * 0.4 - 0.2, 1});
+    Vec3 o = kEye;
+    for (int depth = 0; depth < (heavy ? 2 : 1); ++depth) {
+        Vec3 n;
+        double t = Trace(o, d, n);
+        WalkSegment(g, o, d, 0, std::isinf(t) ? 2.0e10 : t, add);
+        if (std::isinf(t)) return;
+        Vec3 hit = o + t * d;
+        WalkSegment(g, hit, kLight - hit, 1e-6, 1.0, add);  // shadow rays
+        if (heavy) WalkSegment(g, hit, kLight2 - hit, 1e-6, 1.0, add);
+        d = d - (2 * Dot(d, n)) * n;
+        o = hit;
+    }
+}
+
+std::size_t HeapInUse() { return mallinfo2().uordblks; }
+
+void BenchWalker(const VoxelGrid &g) {
+    std::mt19937_64 rng(7);
+    std::uniform_real_distribution<double> u(-1, 1);
+    const int kRays = 400000;
+    std::vector<Vec3> o(kRays), d(kRays);
+    for (int i = 0; i < kRays; ++i) {
+        o[i] = Vec3{15 * u(rng), 15 * u(rng), 15 * u(rng)};
+        d[i] = Vec3{u(rng), u(rng), u(rng)};
+    }
+    std::uint64_t voxels = 0, checksum = 0;
+    auto t0 = Clock::now();
+    for (int i = 0; i < kRays; ++i)
+        WalkSegment(g, o[i], d[i], 0, 2.0e10, [&](std::uint32_t v) {
+            ++voxels;
+            checksum += v;
+        });
+    auto t1 = Clock::now();
+    PixelRecorder rec;
+    auto t2 = Clock::now();
+    for (int i = 0; i < kRays; ++i) {
+        if (i % 4 == 0) rec.Begin();  // ~4 rays per pixel
+        WalkSegment(g, o[i], d[i], 0, 2.0e10, [&](std::uint32_t v) { rec.Add(v); });
+        checksum += rec.Voxels().size();
+    }
+    auto t3 = Clock::now();
+    double s = Seconds(t0, t1), s2 = Seconds(t2, t3);
+    std::printf("walker: %d random rays through %dx%dx%d, %.1f voxels/ray\n", kRays, g.Res(0), g.Res(1), g.Res(2),
+                double(voxels) / kRays);
+    std::printf("  walk only          %6.2f ns/voxel  %6.1f ns/ray\n", 1e9 * s / double(voxels), 1e9 * s / kRays);
+    std::printf("  walk + recorder    %6.2f ns/voxel  (checksum %llu)\n", 1e9 * s2 / double(voxels),
+                (unsigned long long)(checksum & 0xffff));
+}
+
+void BenchStore(const VoxelGrid &g, bool heavy, int threads) {
+    std::printf("\nstore: %dx%d, %s, %d render thread(s)\n", kW, kH,
+                heavy ? "camera ray, 2 shadow rays, mirror ray, its 2 shadow rays"
+                      : "camera ray + 1 shadow ray",
+                threads);
+    std::size_t heap0 = HeapInUse();
+    auto t0 = Clock::now();
+    DependencyStore store(kW, kH);
+    // Threads take interleaved 32-pixel-high bands, like POV-Ray's render blocks.
+    std::vector<std::thread> pool;
+    for (int ti = 0; ti < threads; ++ti)
+        pool.emplace_back([&, ti] {
+            PixelRecorder rec;
+            for (int y0 = 32 * ti; y0 < kH; y0 += 32 * threads)
+                for (int y = y0; y < std::min(kH, y0 + 32); ++y)
+                    for (int x = 0; x < kW; ++x) {
+                        rec.Begin();
+                        RecordPixel(g, x, y, heavy, rec);
+                        store.Commit(x, y, rec);
+                    }
+        });
+    for (std::thread &t : pool) t.join();
+    auto t1 = Clock::now();
+    std::size_t heap1 = HeapInUse();
+    const double px = double(kW) * kH;
+    std::size_t entries = store.EntryCount(), mem = store.MemoryBytes();
+    std::size_t payload = mem - kW * std::size_t(kH) * sizeof(void *) - sizeof(store);
+    std::printf("  trace+record+commit  %.2f s (%.0f ns/pixel incl. the toy tracer)\n", Seconds(t0, t1),
+                1e9 * Seconds(t0, t1) / px * threads);
+    std::printf("  entries/pixel        %.1f\n", double(entries) / px);
+    std::printf("  payload bytes/entry  %.3f\n", double(payload) / double(entries));
+    std::printf("  MemoryBytes          %.1f MB = %.1f B/pixel (slots 8 B + blocks)\n", mem / 1e6, mem / px);
+    std::printf("  heap in use (malloc) %.1f MB = %.1f B/pixel (incl. allocator overhead)\n", (heap1 - heap0) / 1e6,
+                double(heap1 - heap0) / px);
+
+    // Dirty sets: nothing; one voxel; a small object (4^3 voxels); a sphere-sized change.
+    struct Case {
+        const char *name;
+        Box box;
+        bool none;
+    } cases[] = {
+        {"no change", Box{}, true},
+        {"1 voxel (on a sphere's front)", Box{{1.1, -1.1, 2.1}, {1.1, -1.1, 2.1}}, false},
+        {"small object (~4^3 voxels)", Box{{5.5, -5, -7}, {6.5, -3, -5}}, false},
+        {"sphere moved (~15^3 voxels)", Box{{-7, -5, -1}, {-1, 1, 5}}, false},
+    };
+    for (const Case &c : cases) {
+        ChangeSet cs;
+        if (!c.none) cs.AddBox(c.box);
+        DirtyResult r = DirtyVoxels(g, cs);
+        double best[2] = {1e9, 1e9};
+        std::size_t dirty = 0;
+        for (int i = 0; i < 3; ++i)
+            for (int ti = 0; ti < 2; ++ti) {
+                auto a = Clock::now();
+                DirtyMask m = store.DirtyPixels(r, ti + 1);
+                auto b = Clock::now();
+                best[ti] = std::min(best[ti], Seconds(a, b));
+                dirty = m.Count();
+            }
+        std::printf("  DirtyPixels %-28s %6.1f ms (2 threads %6.1f ms)  %5zu dirty voxels -> %4.1f%% pixels\n",
+                    c.name, 1e3 * best[0], 1e3 * best[1], r.voxels.Count(), 100.0 * double(dirty) / px);
+    }
+}
+
+}  // namespace
+
+int main() {
+    VoxelGrid g(Box{{-10, -10, -10}, {10, 10, 10}}, 64, 64, 64);
+    BenchWalker(g);
+    BenchStore(g, false, 1);
+    BenchStore(g, true, 2);
+    return 0;
+}

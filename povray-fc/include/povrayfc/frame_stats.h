@@ -1,0 +1,36 @@
+// Per-frame statistics of frame coherence: the log line and the machine-readable CSV row.
+#ifndef POVRAYFC_FRAME_STATS_H
+#define POVRAYFC_FRAME_STATS_H
+
+#include <cstdint>
+#include <string>
+
+namespace povrayfc {
+
+struct FrameStats {
+    int frame = 0;
+    double clock = 0.0;
+    bool coherent = false;        // fc active: some pixels could be reused
+    std::string fullReason;       // why every pixel was traced; empty when fc re-traced a subset
+    std::uint64_t pixels = 0;     // pixels in the render area
+    std::uint64_t traced = 0;     // pixels traced
+    std::uint64_t reused = 0;     // pixels whose stored colour was reused
+    std::uint64_t dirtyVoxels = 0;
+    std::uint64_t voxels = 0;     // voxels in the grid (0 when fc is inactive)
+    std::uint64_t rays = 0;       // rays traced (POV-Ray's "Rays:" count)
+    double bookkeepingSeconds = 0.0;  // change detection, dirty pixels, statistics
+    std::uint64_t storeBytes = 0;     // dependency lists and stored colours
+
+    // One human-readable line for the render log.
+    std::string LogLine() const;
+    static std::string CsvHeader();
+    std::string CsvRow() const;
+};
+
+// Appends `stats` as a CSV row to `path`, writing the header first when the file is new
+// or empty. Returns false (and leaves `error` set) when the file cannot be written.
+bool AppendStatsCsv(const std::string &path, const FrameStats &stats, std::string &error);
+
+}  // namespace povrayfc
+
+#endif

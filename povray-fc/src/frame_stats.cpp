@@ -1,0 +1,64 @@
+// Formatting of frame-coherence statistics.
+#include "povrayfc/frame_stats.h"
+
+#include <cerrno>
+#include <cstdio>
+#include <cstring>
+#include <sstream>
+
+namespace povrayfc {
+
+namespace {
+std::string CsvQuoted(const std::string &s) {
+    std::string out = "\"";
+    for (char c : s) out += (c == '"') ? std::string("\"\"") : std::string(1, c);
+    return out + "\"";
+}
+}  // namespace
+
+std::string FrameStats::LogLine() const {
+    char buf[512];
+    const double percent = pixels ? 100.0 * double(traced) / double(pixels) : 0.0;
+    std::snprintf(buf, sizeof buf,
+                  "Frame coherence: frame %d: %llu of %llu pixels traced (%.1f%%), %llu reused, "
+                  "%llu of %llu voxels dirty, bookkeeping %.3f s, store %.1f MiB",
+                  frame, (unsigned long long)traced, (unsigned long long)pixels, percent,
+                  (unsigned long long)reused, (unsigned long long)dirtyVoxels,
+                  (unsigned long long)voxels, bookkeepingSeconds, double(storeBytes) / 1048576.0);
+    std::string line = buf;
+    if (!fullReason.empty()) line += "; full frame: " + fullReason;
+    return line;
+}
+
+std::string FrameStats::CsvHeader() {
+    return "frame,clock,coherent,full_reason,pixels,traced,reused,dirty_voxels,voxels,rays,"
+           "bookkeeping_s,store_bytes";
+}
+
+std::string FrameStats::CsvRow() const {
+    std::ostringstream row;
+    row.precision(17);
+    row << frame << ',' << clock << ',' << (coherent ? 1 : 0) << ',' << CsvQuoted(fullReason)
+        << ',' << pixels << ',' << traced << ',' << reused << ',' << dirtyVoxels << ',' << voxels
+        << ',' << rays << ',' << bookkeepingSeconds << ',' << storeBytes;
+    return row.str();
+}
+
+bool AppendStatsCsv(const std::string &path, const FrameStats &stats, std::string &error) {
+    std::FILE *f = std::fopen(path.c_str(), "a");
+    if (!f) {
+        error = path + ": " + std::strerror(errno);
+        return false;
+    }
+    std::fseek(f, 0, SEEK_END);
+    const bool empty = std::ftell(f) == 0;
+    std::string text = (empty ? FrameStats::CsvHeader() + "\n" : std::string()) + stats.CsvRow() + "\n";
+    const bool ok = std::fwrite(text.data(), 1, text.size(), f) == text.size();
+    if (std::fclose(f) != 0 || !ok) {
+        error = path + ": " + std::strerror(errno);
+        return false;
+    }
+    return true;
+}
+
+}  // namespace povrayfc
