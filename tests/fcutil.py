@@ -13,7 +13,7 @@ DEBIAN_POVRAY = Path("/usr/bin/povray")
 SCENES = TOP / "scenes"
 
 
-def render(binary, scene, out_file, *options, cwd=None, timeout=600, threads=None):
+def render(binary, scene, out_file, *options, cwd=None, timeout=600, threads=None, env=None):
     """Render `scene` with `binary` into `out_file` (Targa); returns the CompletedProcess.
 
     Display and pause are off and the render runs without a terminal, as in CI.
@@ -23,7 +23,7 @@ def render(binary, scene, out_file, *options, cwd=None, timeout=600, threads=Non
         args.append(f"+WT{threads}")
     args += list(options)
     return subprocess.run(args, cwd=cwd or Path(scene).parent, capture_output=True,
-                          text=True, timeout=timeout, stdin=subprocess.DEVNULL)
+                          text=True, timeout=timeout, stdin=subprocess.DEVNULL, env=env)
 
 
 def read_pixels(path):
