@@ -57,7 +57,11 @@ PYTHON := /usr/bin/python3
 .PHONY: all deps test unit-test integration-test demo clean distclean
 .DELETE_ON_ERROR:
 
-all: $(BIN)/povray-fc
+all: $(BIN)/povray-fc coordinator
+
+# The PVM master and slave (coordinator/): fc-master and fc-slave in $(BIN).
+include $(TOP)/coordinator/coordinator.mk
+coordinator: | deps
 
 # Checks in a fraction of a second when everything is installed, so the build
 # targets run it first: on a fresh machine `make demo` or `make test` is all it takes.

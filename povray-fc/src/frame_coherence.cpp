@@ -103,6 +103,7 @@ std::string FrameCoherence::CompareWithLastFrame(const FrameSetup &setup, const 
 void FrameCoherence::BeginFrame(bool enabled, const FrameSetup &setup, const void *sceneKey,
                                 const SceneEffects &effects) {
     const auto start = std::chrono::steady_clock::now();
+    frameStart_ = start;
     traced_ = 0;
     reused_ = 0;
     current_ = FrameStats();
@@ -274,6 +275,7 @@ void FrameCoherence::EndFrame(std::uint64_t raysTraced) {
     }
     bookkeeping_ += std::chrono::steady_clock::now() - start;
     current_.bookkeepingSeconds = std::chrono::duration<double>(bookkeeping_).count();
+    current_.renderSeconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - frameStart_).count();
     // The log line only with fc on (off must look like POV-Ray); the CSV either way,
     // so benchmarks can compare the same binary with fc off.
     if (enabled_) std::fprintf(stderr, "%s\n", current_.LogLine().c_str());

@@ -32,7 +32,7 @@ std::string FrameStats::LogLine() const {
 
 std::string FrameStats::CsvHeader() {
     return "frame,clock,coherent,full_reason,pixels,traced,reused,dirty_voxels,voxels,rays,"
-           "bookkeeping_s,store_bytes";
+           "bookkeeping_s,store_bytes,render_s";
 }
 
 std::string FrameStats::CsvRow() const {
@@ -40,7 +40,7 @@ std::string FrameStats::CsvRow() const {
     row.precision(17);
     row << frame << ',' << clock << ',' << (coherent ? 1 : 0) << ',' << CsvQuoted(fullReason)
         << ',' << pixels << ',' << traced << ',' << reused << ',' << dirtyVoxels << ',' << voxels
-        << ',' << rays << ',' << bookkeepingSeconds << ',' << storeBytes;
+        << ',' << rays << ',' << bookkeepingSeconds << ',' << storeBytes << ',' << renderSeconds;
     return row.str();
 }
 

@@ -17,14 +17,17 @@ SegmentWalker::SegmentWalker(const VoxelGrid &grid, Vec3 origin, Vec3 dir, doubl
     nxy_ = nx_ * std::uint32_t(grid.Res(1));
     const Box &bounds = grid.Bounds();
 
-    // Components below 2^-600 of the largest are dropped (made static): over the clipped
-    // segment, at most about one grid diagonal long along the largest component, they
-    // move the point by < 1e-180 of the grid size, far inside the margin that the start
-    // range below already includes. Kept components then have 1/dir <= 2^1000 as long as
-    // the largest is in [2^-400, 2^400]; outside that (rare) range dir is first scaled by a
-    // power of two, exactly, and t by the inverse.
+    // 1/dir is used for event times; it must stay finite, so a component below 2^-600 of
+    // the largest gets no events ("slow" axis). That is safe: within the clipped segment,
+    // at most about one grid diagonal long along the largest component, such an axis moves
+    // by < 1e-180 of the grid size, far inside the margin the start range already covers.
+    // (It still moves in the clip and in p0: from a far origin the drift adds up.) Kept
+    // components have 1/dir <= 2^1000 as long as the largest is in [2^-400, 2^400];
+    // outside that (rare) range dir is first scaled by a power of two, exactly, and t by
+    // the inverse.
     double maxAbs = std::max({std::fabs(dir.x), std::fabs(dir.y), std::fabs(dir.z)});
-    bool moving = maxAbs > 0;
+    const bool moving = maxAbs > 0;
+    bool slow[3] = {false, false, false};
     if (moving) {
         double d[3] = {dir.x, dir.y, dir.z};
         if (!(maxAbs >= 0x1p-400 && maxAbs <= 0x1p400)) {
@@ -35,7 +38,10 @@ SegmentWalker::SegmentWalker(const VoxelGrid &grid, Vec3 origin, Vec3 dir, doubl
             maxAbs = std::ldexp(maxAbs, -e);
         }
         const double tiny = maxAbs * 0x1p-600;
-        for (int a = 0; a < 3; ++a) dir_[a] = std::fabs(d[a]) < tiny ? 0.0 : d[a] + 0.0;  // -0 -> +0
+        for (int a = 0; a < 3; ++a) {
+            dir_[a] = d[a] + 0.0;  // -0 + 0 == +0: a zero component never picks a step sign
+            slow[a] = std::fabs(d[a]) < tiny;
+        }
     }
     for (int a = 0; a < 3; ++a) {
         res_[a] = grid.Res(a);
@@ -53,8 +59,16 @@ SegmentWalker::SegmentWalker(const VoxelGrid &grid, Vec3 origin, Vec3 dir, doubl
                 if (origin[a] < lo || origin[a] > hi) return;  // parallel and outside
                 continue;
             }
-            invDir_[a] = 1.0 / dir_[a];
-            double ta = (lo - origin[a]) * invDir_[a], tb = (hi - origin[a]) * invDir_[a];
+            double ta, tb;
+            if (slow[a]) {
+                // Divide (x / tiny is +-inf at worst, never NaN like 0 * inf could be).
+                ta = (lo - origin[a]) / dir_[a];
+                tb = (hi - origin[a]) / dir_[a];
+            } else {
+                invDir_[a] = 1.0 / dir_[a];
+                ta = (lo - origin[a]) * invDir_[a];
+                tb = (hi - origin[a]) * invDir_[a];
+            }
             if (ta > tb) std::swap(ta, tb);
             t0 = std::max(t0, ta);
             t1 = std::min(t1, tb);
@@ -77,7 +91,9 @@ SegmentWalker::SegmentWalker(const VoxelGrid &grid, Vec3 origin, Vec3 dir, doubl
     }
     for (int a = 0; a < 3; ++a) {
         const double lo = grid.Boundary(a, 0);
-        if (dir_[a] > 0) {
+        if (slow[a]) {
+            // no events: see above
+        } else if (dir_[a] > 0) {
             // Cell last+1 is entered at boundary last+1 - margin; cell first is left at
             // boundary first+1 + margin; there is no cell to enter past boundary n-1.
             step_[a] = 1;

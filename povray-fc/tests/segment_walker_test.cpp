@@ -255,6 +255,10 @@ TEST_F(WalkerUnitGrid, HugeAndInfiniteTmaxMatchExactExit) {
     // A hugely scaled direction with correspondingly tiny t gives the same set.
     EXPECT_EQ(Sorted(Walk(g, o, 1e12 * d, 0, 50e-12)), ref);
     EXPECT_EQ(Sorted(Walk(g, o, 1e-9 * d, 0, 50e9)), ref);
+    // Directions beyond 2^+-400 (rescaled internally by a power of two) still match.
+    EXPECT_EQ(Sorted(Walk(g, o, 1e-200 * d, 0, 50e200)), ref);
+    EXPECT_EQ(Sorted(Walk(g, o, 1e200 * d, 0, 50e-200)), ref);
+    EXPECT_EQ(Sorted(Walk(g, o, 1e-310 * d, 0, kInf)), ref);
 }
 
 TEST(Walker, FarOriginAndDenormalDirection) {
@@ -265,6 +269,14 @@ TEST(Walker, FarOriginAndDenormalDirection) {
     Vec3 far{-3e6, 2 - 4e6, 2 + 5e6};
     Voxels got = Sorted(Walk(g, far, Vec3{2, 2, 2} - far, 1, 1));
     EXPECT_EQ(got, Block(g, 1, 2, 1, 2, 1, 2));
+    // A tiny direction component from an astronomically far origin still adds up: from
+    // x = 2^1000, y = -2^399 with dy = 2^-601 the ray arrives at y ~ 0 and crosses the grid
+    // [0,4]x[-2,2]x[0,4] (where double precision cannot say exactly where, so all y rows).
+    VoxelGrid tall(Box{{0, -2, 0}, {4, 2, 4}}, 4, 4, 4);
+    Voxels drift = Sorted(Walk(tall, {0x1p1000, -0x1p399, 0.5}, {-1, 0x1p-601, 0}, 0, kInf));
+    for (int x = 0; x < 4; ++x)
+        for (int y = 1; y <= 2; ++y)
+            EXPECT_TRUE(std::binary_search(drift.begin(), drift.end(), tall.Index(x, y, 0))) << x << "," << y;
     // A denormal direction component is a (tiny) movement, not a NaN.
     EXPECT_EQ(Sorted(Walk(g, {-1, 1.5, 0.5}, {1, 4.9e-324, 0}, 0, kInf)), Block(g, 0, 3, 1, 1, 0, 0));
 }
@@ -451,8 +463,8 @@ SegmentKind RandomSegment(const VoxelGrid &g, Vec3 &o, Vec3 &d, double &tmin, do
             tmax = U() < 0.5 ? 1 : kBoundHuge;
             return SegmentKind::kFar;
         }
-        default: {  // generic ray from anywhere, unnormalised, any t range
-            double s = std::pow(10.0, -3 + 6 * U());
+        default: {  // generic ray from anywhere, unnormalised (sometimes absurdly), any t range
+            double s = U() < 0.1 ? std::pow(10.0, -300 + 600 * U()) : std::pow(10.0, -3 + 6 * U());
             d = Vec3{s * (U() - 0.5), s * (U() - 0.5), s * (U() - 0.5)};
             tmin = U() < 0.5 ? 0 : -U() / s;
             tmax = U() < 0.3 ? kInf : (U() < 0.5 ? kBoundHuge : 3 * U() / s);

@@ -104,6 +104,7 @@ class FrameCoherence {
     FrameStats current_, last_;
     std::atomic<std::uint64_t> traced_{0}, reused_{0};
     std::chrono::steady_clock::duration bookkeeping_{};
+    std::chrono::steady_clock::time_point frameStart_{};
 };
 
 }  // namespace povrayfc

@@ -20,6 +20,7 @@ struct FrameStats {
     std::uint64_t rays = 0;       // rays traced (POV-Ray's "Rays:" count)
     double bookkeepingSeconds = 0.0;  // change detection, dirty pixels, statistics
     std::uint64_t storeBytes = 0;     // dependency lists and stored colours
+    double renderSeconds = 0.0;       // wall time from fc's frame start to its end (tracing)
 
     // One human-readable line for the render log.
     std::string LogLine() const;

@@ -47,8 +47,8 @@ namespace povrayfc {
 // leave would empty a range (the segment left the grid) or the next event is beyond tEnd.
 //
 // Input rules (the walker never throws: it sits in the innermost ray loop):
-//  - dir need not be normalised; t is in units of dir (internally dir is scaled by a
-//    power of two, exactly, so any finite magnitude works).
+//  - dir need not be normalised; t is in units of dir. Any finite magnitude works (a dir
+//    whose largest component is beyond 2^+-400 is rescaled by a power of two, exactly).
 //  - tmin/tmax may be +-infinity (an unbounded ray: POV-Ray's BOUND_HUGE = 2e10 works too).
 //  - tmin > tmax is an empty segment: Valid(), yields nothing.
 //  - dir == (0,0,0) is the single point origin, whatever tmin/tmax (a segment that does not

@@ -1,0 +1,186 @@
+// Change detection at parse time: a 64-bit hash of what the parser consumed, per item.
+//
+// The patched parser (patches/0006-parse-scene-signatures.patch) feeds a ParseHasher
+// with every token it reads (reserved word ids, literal values, the value of `clock`
+// and of float/vector/colour/string identifiers, the content hash of every other kind
+// of identifier) and with every evaluated numeric factor (so rand() and file_exists()
+// are covered). Hashes live in a stack of scopes:
+//  - each top-level item (object, camera, light, global_settings, fog...) is hashed in
+//    its own scope, begun after its first token was read, so that the directives
+//    between items are not part of any item;
+//  - the right-hand side of #declare/#local, a macro argument and an array element
+//    are hashed in an isolated scope; the result becomes the content hash of the
+//    identifier's slot (the address of the void* that holds its value), mixed in
+//    wherever the identifier is used. A slot with no known content hash mixes a value
+//    never seen before, so whatever uses it counts as changed;
+//  - a directive (#if, #while, #declare...) is hashed in an isolated scope too: its
+//    effect on an item shows in the tokens that item then reads and in the identifiers
+//    it uses, not in the directive's own tokens.
+// A SignatureBuilder sorts the finished items into a SceneSignature.
+//
+// Nothing here knows POV-Ray's types; the hooks translate.
+#ifndef POVRAYFC_PARSE_HASHER_H
+#define POVRAYFC_PARSE_HASHER_H
+
+#include <cstddef>
+#include <cstdint>
+#include <string>
+#include <unordered_map>
+#include <vector>
+
+#include "povrayfc/geometry.h"
+#include "povrayfc/scene_signature.h"
+
+namespace povrayfc {
+
+// splitmix64's finaliser: a bijection on 64-bit words with full avalanche.
+inline std::uint64_t HashFinalize64(std::uint64_t x) {
+    x ^= x >> 30;
+    x *= 0xbf58476d1ce4e5b9ULL;
+    x ^= x >> 27;
+    x *= 0x94d049bb133111ebULL;
+    x ^= x >> 31;
+    return x;
+}
+
+// A value that no earlier call in this process returned, and that another process
+// draws from an unrelated random start: mixing it makes a hash "changed".
+std::uint64_t UniqueHashValue();
+
+class ParseHasher {
+public:
+    ParseHasher();
+
+    // Forget everything: only the root scope is left and no slot has a content hash.
+    void BeginParse();
+
+    // --- mixing into the current (innermost) scope; order matters ---
+    void MixWord(std::uint64_t word) {
+        std::uint64_t &h = scopes_.back();
+        h = HashFinalize64(h + word * 0x9e3779b97f4a7c15ULL + 0x632be59bd9b4e019ULL);
+    }
+    void MixToken(int tokenId) { MixWord(0x746f6b0000000000ULL ^ static_cast<std::uint32_t>(tokenId)); }
+    void MixInt(long long value) { MixWord(static_cast<std::uint64_t>(value)); }
+    // Bit pattern of the value: 0.0 and -0.0 differ, which only errs on the safe side.
+    void MixFloat(double value);
+    void MixFloats(const double *values, std::size_t count);
+    void MixBytes(const void *data, std::size_t size);
+    // A NUL-terminated string (NULL mixes a marker of its own).
+    void MixString(const char *text);
+    // A NUL-terminated UCS-2 string, POV-Ray's UCS2 (unsigned short).
+    void MixUcs2String(const unsigned short *text);
+    void MixUnique() { MixWord(UniqueHashValue()); }
+
+    // --- scopes ---
+    void PushScope();
+    // Ends the innermost scope and returns its hash; with mixIntoParent the hash is
+    // also mixed into the scope around it. The root scope is never popped: popping it
+    // returns its hash and leaves it in place.
+    std::uint64_t PopScope(bool mixIntoParent);
+    // The hash the current scope would return if it were popped now.
+    std::uint64_t Peek() const { return Finish(scopes_.back()); }
+    std::size_t Depth() const { return scopes_.size(); }  // 1 = only the root
+
+    // --- content hashes of identifier slots ---
+    void SetSlotHash(const void *slot, std::uint64_t hash) { slots_[slot] = hash; }
+    bool SlotHash(const void *slot, std::uint64_t &hash) const;
+    // Mixes the slot's content hash, or a unique value when it has none.
+    void MixSlot(const void *slot);
+    void ForgetSlot(const void *slot) { slots_.erase(slot); }
+    // The slots &first[0] ... &first[count-1] (an array's element pointers).
+    void ForgetSlots(void *const *first, std::size_t count);
+    // Gives to[i] the content hash of from[i] (or none when from[i] has none).
+    void CopySlots(void *const *from, void *const *to, std::size_t count);
+    std::size_t SlotCount() const { return slots_.size(); }
+
+private:
+    static std::uint64_t Finish(std::uint64_t h) { return HashFinalize64(h ^ 0x5bd1e9955bd1e995ULL); }
+
+    std::vector<std::uint64_t> scopes_;
+    std::unordered_map<const void *, std::uint64_t> slots_;
+};
+
+// What a finished top-level item was, as the parser hook classifies it.
+enum class ParseItemClass {
+    kDiscard,  // not part of the scene's content (a directive written without '#', end of file)
+    kCamera,
+    kGlobal,   // global_settings, fog, rainbow, sky_sphere, background, media, default...
+    kObject,   // anything Parse_Object returned: objects, light sources, CSG with lights
+};
+
+// Collects the items of one parse into a SceneSignature.
+class SignatureBuilder {
+public:
+    SignatureBuilder() { Reset(); }
+
+    // Start a new parse. Reads POVRAYFC_DEBUG_SIGNATURES from the environment.
+    void Reset();
+
+    // One top-level item: BeginItem when its first token was read (label: that token's
+    // text, line: its line, both only for the debug listing), SetItemObject for an
+    // object once its bounds are final, EndItem with the item's hash.
+    void BeginItem(const char *label, long line);
+    // POV-Ray's single-precision bounding box (lower left corner and lengths).
+    // `unbounded`: the object's INFINITE_FLAG, or it is inverted (its inside is
+    // everything outside its surface). A box that is not finite or is larger than
+    // kHugeLength on some axis makes the object infinite too.
+    void SetItemObject(const float lowerLeft[3], const float lengths[3], bool unbounded,
+                       bool isLightSource);
+    // addedLights: the item added light sources to the scene's global light list
+    // (a light_source, or a union containing one); its hash then goes into `lights`.
+    void EndItem(ParseItemClass itemClass, std::uint64_t hash, bool addedLights);
+
+    // Mix a hash that is not an item into camera / lights / global (e.g. the default{}
+    // block reached through a directive, or the final language version).
+    void MixCamera(std::uint64_t hash) { MixInto(signature_.camera, hash); }
+    void MixLights(std::uint64_t hash) { MixInto(signature_.lights, hash); }
+    void MixGlobal(std::uint64_t hash) { MixInto(signature_.global, hash); }
+
+    // Effects frame coherence cannot reproduce exactly; each name is kept once, in the
+    // order first seen.
+    void NoteInexact(const char *name);
+    void NoteMedia(int method, double jitter);           // method 1 or 2, jitter > 0
+    void NoteFinish(double crand, bool subsurface);      // crand > 0, subsurface {}
+    void NoteAreaLight(bool areaLight, bool jitter);     // area_light ... jitter
+    void NoteRadiosity(bool enabled) { if (enabled) NoteInexact("radiosity"); }
+    void NotePhotons(bool enabled) { if (enabled) NoteInexact("photons"); }
+    void NoteSubsurface(bool enabled) { if (enabled) NoteInexact("subsurface"); }
+
+    const SceneSignature &Signature() const { return signature_; }
+    // Marks the signature complete and hands it over (the builder is Reset after).
+    // With POVRAYFC_DEBUG_SIGNATURES set (and not "0"), lists every item on stderr.
+    SceneSignature Finish();
+
+    // Padding and "huge" threshold for SetItemObject.
+    static constexpr double kRelativePad = 1e-4;
+    static constexpr double kAbsolutePad = 1e-6;
+    static constexpr double kHugeLength = 1e9;
+    // The conservative world box for POV-Ray's float box; false when it is unbounded.
+    static bool ObjectBox(const float lowerLeft[3], const float lengths[3], Box &box);
+
+    // The debug listing of the items so far (what Finish prints).
+    std::string DebugListing() const;
+
+private:
+    struct Item {
+        ParseItemClass itemClass = ParseItemClass::kDiscard;
+        std::uint64_t hash = 0;
+        std::string label;
+        long line = 0;
+        bool hasObject = false, infinite = false, isLight = false, addedLights = false;
+        Box bounds;
+    };
+    static void MixInto(std::uint64_t &target, std::uint64_t hash);
+
+    SceneSignature signature_;
+    bool debug_ = false;
+    Item current_;
+    std::vector<Item> items_;   // only kept when debugging
+};
+
+// True when POVRAYFC_DEBUG_SIGNATURES is set to something other than "" or "0".
+bool DebugSignaturesEnabled();
+
+}  // namespace povrayfc
+
+#endif

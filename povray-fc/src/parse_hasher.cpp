@@ -1,0 +1,301 @@
+// ParseHasher and SignatureBuilder: see povrayfc/parse_hasher.h.
+#include "povrayfc/parse_hasher.h"
+
+#include <atomic>
+#include <chrono>
+#include <cinttypes>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <cstring>
+#include <random>
+#include <sstream>
+
+#include <unistd.h>
+
+namespace povrayfc {
+
+namespace {
+
+constexpr std::uint64_t kScopeSeed = 0x243f6a8885a308d3ULL;  // pi's fraction: any odd constant
+constexpr std::uint64_t kNullMarker = 0x6e756c6c6e756c6cULL;
+
+std::uint64_t RandomStart() {
+    std::uint64_t seed = 0;
+    try {
+        std::random_device device;
+        seed = (static_cast<std::uint64_t>(device()) << 32) ^ device();
+    } catch (...) {
+        // no entropy source: time and pid still differ between runs and processes
+    }
+    seed ^= static_cast<std::uint64_t>(
+        std::chrono::high_resolution_clock::now().time_since_epoch().count());
+    seed ^= static_cast<std::uint64_t>(getpid()) << 40;
+    return seed;
+}
+
+}  // namespace
+
+std::uint64_t UniqueHashValue() {
+    static const std::uint64_t start = RandomStart();
+    static std::atomic<std::uint64_t> counter{0};
+    // A bijection of distinct inputs: never the same value twice in this process.
+    return HashFinalize64(start + counter.fetch_add(1, std::memory_order_relaxed) *
+                                      0x9e3779b97f4a7c15ULL);
+}
+
+bool DebugSignaturesEnabled() {
+    const char *value = std::getenv("POVRAYFC_DEBUG_SIGNATURES");
+    return value != nullptr && value[0] != '\0' && std::strcmp(value, "0") != 0;
+}
+
+// ---------------------------------------------------------------------------------------
+// ParseHasher
+
+ParseHasher::ParseHasher() { BeginParse(); }
+
+void ParseHasher::BeginParse() {
+    scopes_.clear();
+    scopes_.push_back(kScopeSeed);
+    slots_.clear();
+}
+
+void ParseHasher::MixFloat(double value) {
+    std::uint64_t bits;
+    std::memcpy(&bits, &value, sizeof bits);
+    MixWord(bits);
+}
+
+void ParseHasher::MixFloats(const double *values, std::size_t count) {
+    MixWord(count);
+    for (std::size_t i = 0; i < count; ++i) MixFloat(values[i]);
+}
+
+void ParseHasher::MixBytes(const void *data, std::size_t size) {
+    const unsigned char *bytes = static_cast<const unsigned char *>(data);
+    MixWord(size);
+    std::size_t i = 0;
+    for (; i + 8 <= size; i += 8) {
+        std::uint64_t word;
+        std::memcpy(&word, bytes + i, 8);
+        MixWord(word);
+    }
+    if (i < size) {
+        std::uint64_t word = 0;
+        std::memcpy(&word, bytes + i, size - i);
+        MixWord(word);
+    }
+}
+
+void ParseHasher::MixString(const char *text) {
+    if (text == nullptr) {
+        MixWord(kNullMarker);
+        return;
+    }
+    MixBytes(text, std::strlen(text));
+}
+
+void ParseHasher::MixUcs2String(const unsigned short *text) {
+    if (text == nullptr) {
+        MixWord(kNullMarker);
+        return;
+    }
+    std::size_t length = 0;
+    while (text[length] != 0) ++length;
+    MixBytes(text, length * sizeof(unsigned short));
+}
+
+void ParseHasher::PushScope() { scopes_.push_back(kScopeSeed); }
+
+std::uint64_t ParseHasher::PopScope(bool mixIntoParent) {
+    const std::uint64_t hash = Finish(scopes_.back());
+    if (scopes_.size() > 1) scopes_.pop_back();
+    if (mixIntoParent) MixWord(hash);
+    return hash;
+}
+
+bool ParseHasher::SlotHash(const void *slot, std::uint64_t &hash) const {
+    auto found = slots_.find(slot);
+    if (found == slots_.end()) return false;
+    hash = found->second;
+    return true;
+}
+
+void ParseHasher::MixSlot(const void *slot) {
+    std::uint64_t hash;
+    if (slot != nullptr && SlotHash(slot, hash))
+        MixWord(hash);
+    else
+        MixUnique();
+}
+
+void ParseHasher::ForgetSlots(void *const *first, std::size_t count) {
+    if (first == nullptr) return;
+    for (std::size_t i = 0; i < count; ++i) slots_.erase(&first[i]);
+}
+
+void ParseHasher::CopySlots(void *const *from, void *const *to, std::size_t count) {
+    if (from == nullptr || to == nullptr) return;
+    for (std::size_t i = 0; i < count; ++i) {
+        std::uint64_t hash;
+        if (SlotHash(&from[i], hash))
+            slots_[&to[i]] = hash;
+        else
+            slots_.erase(&to[i]);
+    }
+}
+
+// ---------------------------------------------------------------------------------------
+// SignatureBuilder
+
+void SignatureBuilder::Reset() {
+    signature_ = SceneSignature();
+    debug_ = DebugSignaturesEnabled();
+    current_ = Item();
+    items_.clear();
+}
+
+void SignatureBuilder::MixInto(std::uint64_t &target, std::uint64_t hash) {
+    target = HashFinalize64(target + hash * 0x9e3779b97f4a7c15ULL + 0x632be59bd9b4e019ULL);
+}
+
+bool SignatureBuilder::ObjectBox(const float lowerLeft[3], const float lengths[3], Box &box) {
+    box = Box();
+    for (int axis = 0; axis < 3; ++axis) {
+        const double lo = lowerLeft[axis];
+        const double length = lengths[axis];
+        const double hi = lo + length;
+        if (!std::isfinite(lo) || !std::isfinite(length) || !std::isfinite(hi)) return false;
+        if (length < 0) return false;   // POV-Ray never makes one; do not trust it
+        if (length > kHugeLength || std::fabs(lo) > kHugeLength || std::fabs(hi) > kHugeLength)
+            return false;
+        // Float rounding of the box and of the intersection code: pad a little.
+        const double pad =
+            kRelativePad * std::fmax(std::fmax(std::fabs(lo), std::fabs(hi)), length) + kAbsolutePad;
+        box.lo[axis] = lo - pad;
+        box.hi[axis] = hi + pad;
+    }
+    return true;
+}
+
+void SignatureBuilder::BeginItem(const char *label, long line) {
+    current_ = Item();
+    if (debug_) {
+        current_.label = label != nullptr ? label : "";
+        current_.line = line;
+    }
+}
+
+void SignatureBuilder::SetItemObject(const float lowerLeft[3], const float lengths[3],
+                                     bool unbounded, bool isLightSource) {
+    current_.hasObject = true;
+    current_.isLight = isLightSource;
+    current_.infinite = unbounded || !ObjectBox(lowerLeft, lengths, current_.bounds);
+    if (current_.infinite) current_.bounds = Box();
+}
+
+void SignatureBuilder::EndItem(ParseItemClass itemClass, std::uint64_t hash, bool addedLights) {
+    current_.itemClass = itemClass;
+    current_.hash = hash;
+    current_.addedLights = addedLights;
+    switch (itemClass) {
+        case ParseItemClass::kDiscard:
+            break;
+        case ParseItemClass::kCamera:
+            MixCamera(hash);
+            break;
+        case ParseItemClass::kGlobal:
+            MixGlobal(hash);
+            break;
+        case ParseItemClass::kObject:
+            if (addedLights || current_.isLight) MixLights(hash);
+            if (!current_.hasObject) {
+                // An object item without an object: nothing to place, so let any change
+                // of it change the whole frame.
+                MixGlobal(hash);
+            } else if (!current_.isLight) {
+                ObjectSignature object;
+                object.hash = hash;
+                object.infinite = current_.infinite;
+                object.bounds = current_.bounds;
+                signature_.objects.push_back(object);
+            }
+            break;
+    }
+    if (debug_ && itemClass != ParseItemClass::kDiscard) items_.push_back(current_);
+    current_ = Item();
+}
+
+void SignatureBuilder::NoteInexact(const char *name) {
+    if (name == nullptr) return;
+    for (const std::string &known : signature_.inexactEffects)
+        if (known == name) return;
+    signature_.inexactEffects.emplace_back(name);
+}
+
+void SignatureBuilder::NoteMedia(int method, double jitter) {
+    if (method == 1) NoteInexact("media method 1");
+    if (method == 2) NoteInexact("media method 2");
+    if (jitter > 0) NoteInexact("media jitter");
+}
+
+void SignatureBuilder::NoteFinish(double crand, bool subsurface) {
+    if (crand > 0) NoteInexact("crand");
+    if (subsurface) NoteInexact("subsurface");
+}
+
+void SignatureBuilder::NoteAreaLight(bool areaLight, bool jitter) {
+    if (areaLight && jitter) NoteInexact("jittered area light");
+}
+
+std::string SignatureBuilder::DebugListing() const {
+    std::ostringstream out;
+    char buffer[160];
+    std::size_t index = 0;
+    for (const Item &item : items_) {
+        const char *name = "object";
+        if (item.itemClass == ParseItemClass::kCamera) name = "camera";
+        if (item.itemClass == ParseItemClass::kGlobal) name = "global";
+        if (item.itemClass == ParseItemClass::kObject && item.isLight) name = "light";
+        std::snprintf(buffer, sizeof buffer, "povrayfc-signature: item %zu %s %016" PRIx64 " line=%ld label=",
+                      index++, name, item.hash, item.line);
+        out << buffer << (item.label.empty() ? "-" : item.label);
+        if (item.itemClass == ParseItemClass::kObject && !item.isLight && item.addedLights)
+            out << " lights";
+        if (item.itemClass == ParseItemClass::kObject && item.hasObject && !item.isLight) {
+            if (item.infinite) {
+                out << " infinite";
+            } else {
+                std::snprintf(buffer, sizeof buffer, " bounds=%.9g,%.9g,%.9g,%.9g,%.9g,%.9g",
+                              item.bounds.lo.x, item.bounds.lo.y, item.bounds.lo.z,
+                              item.bounds.hi.x, item.bounds.hi.y, item.bounds.hi.z);
+                out << buffer;
+            }
+        }
+        out << '\n';
+    }
+    std::snprintf(buffer, sizeof buffer,
+                  "povrayfc-signature: camera %016" PRIx64 "\n"
+                  "povrayfc-signature: lights %016" PRIx64 "\n"
+                  "povrayfc-signature: global %016" PRIx64 "\n",
+                  signature_.camera, signature_.lights, signature_.global);
+    out << buffer;
+    for (const std::string &effect : signature_.inexactEffects)
+        out << "povrayfc-signature: inexact " << effect << '\n';
+    out << "povrayfc-signature: objects " << signature_.objects.size() << '\n';
+    return out.str();
+}
+
+SceneSignature SignatureBuilder::Finish() {
+    signature_.complete = true;
+    if (debug_) {
+        const std::string listing = DebugListing();
+        std::fputs(listing.c_str(), stderr);
+        std::fflush(stderr);
+    }
+    SceneSignature done = std::move(signature_);
+    Reset();
+    return done;
+}
+
+}  // namespace povrayfc

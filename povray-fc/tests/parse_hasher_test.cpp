@@ -1,0 +1,421 @@
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdint>
+#include <cstdlib>
+#include <limits>
+#include <set>
+#include <string>
+
+#include "povrayfc/parse_hasher.h"
+
+using povrayfc::Box;
+using povrayfc::ParseHasher;
+using povrayfc::ParseItemClass;
+using povrayfc::SceneSignature;
+using povrayfc::SignatureBuilder;
+
+namespace {
+
+// The hash of one scope holding the given tokens.
+std::uint64_t HashTokens(std::initializer_list<int> tokens) {
+    ParseHasher h;
+    h.PushScope();
+    for (int t : tokens) h.MixToken(t);
+    return h.PopScope(false);
+}
+
+}  // namespace
+
+TEST(ParseHasher, SameInputSameHash) {
+    EXPECT_EQ(HashTokens({1, 2, 3}), HashTokens({1, 2, 3}));
+    ParseHasher a, b;
+    for (ParseHasher *h : {&a, &b}) {
+        h->MixToken(7);
+        h->MixFloat(0.25);
+        h->MixString("sphere");
+        h->MixInt(-3);
+    }
+    EXPECT_EQ(a.Peek(), b.Peek());
+}
+
+TEST(ParseHasher, OrderAndLengthMatter) {
+    EXPECT_NE(HashTokens({1, 2, 3}), HashTokens({3, 2, 1}));
+    EXPECT_NE(HashTokens({1, 2}), HashTokens({2, 1}));
+    EXPECT_NE(HashTokens({1}), HashTokens({1, 1}));
+    EXPECT_NE(HashTokens({0}), HashTokens({0, 0}));
+    EXPECT_NE(HashTokens({}), HashTokens({0}));
+}
+
+TEST(ParseHasher, ValuesMatter) {
+    ParseHasher a, b, c;
+    a.MixFloat(0.5);
+    b.MixFloat(0.5000000000000001);
+    c.MixFloat(0.5);
+    EXPECT_NE(a.Peek(), b.Peek());
+    EXPECT_EQ(a.Peek(), c.Peek());
+
+    ParseHasher s1, s2, s3;
+    s1.MixString("abc");
+    s2.MixString("abd");
+    s3.MixString(nullptr);
+    EXPECT_NE(s1.Peek(), s2.Peek());
+    EXPECT_NE(s1.Peek(), s3.Peek());
+
+    // Strings are length-delimited: "ab"+"c" is not "a"+"bc".
+    ParseHasher t1, t2;
+    t1.MixString("ab");
+    t1.MixString("c");
+    t2.MixString("a");
+    t2.MixString("bc");
+    EXPECT_NE(t1.Peek(), t2.Peek());
+
+    // Bytes beyond a multiple of 8 count, and so do the bytes' values.
+    const char nine[] = "123456789";
+    const char nineOther[] = "123456780";
+    ParseHasher b1, b2;
+    b1.MixBytes(nine, 9);
+    b2.MixBytes(nineOther, 9);
+    EXPECT_NE(b1.Peek(), b2.Peek());
+
+    const unsigned short u1[] = {'h', 'i', 0};
+    const unsigned short u2[] = {'h', 'o', 0};
+    ParseHasher w1, w2, w3;
+    w1.MixUcs2String(u1);
+    w2.MixUcs2String(u2);
+    w3.MixUcs2String(u1);
+    EXPECT_NE(w1.Peek(), w2.Peek());
+    EXPECT_EQ(w1.Peek(), w3.Peek());
+}
+
+TEST(ParseHasher, ScopesAreIsolated) {
+    // What happens in an isolated scope does not reach the scope around it.
+    ParseHasher a, b;
+    a.PushScope();
+    a.MixToken(1);
+    a.PushScope();
+    a.MixFloat(42.0);                 // e.g. a #declare between tokens of an item
+    const std::uint64_t inner = a.PopScope(false);
+    a.MixToken(2);
+    const std::uint64_t outerA = a.PopScope(false);
+
+    b.PushScope();
+    b.MixToken(1);
+    b.PushScope();
+    b.MixFloat(43.0);                 // different content, same isolation
+    const std::uint64_t innerB = b.PopScope(false);
+    b.MixToken(2);
+    const std::uint64_t outerB = b.PopScope(false);
+
+    EXPECT_NE(inner, innerB);
+    EXPECT_EQ(outerA, outerB);
+    EXPECT_EQ(outerA, HashTokens({1, 2}));
+}
+
+TEST(ParseHasher, ScopeHashDoesNotDependOnWhatCameBefore) {
+    // An item is hashed the same whatever was parsed before it and at whatever depth.
+    ParseHasher a;
+    a.MixToken(99);
+    a.MixFloat(3.0);
+    a.PushScope();
+    a.MixToken(5);
+    const std::uint64_t first = a.PopScope(false);
+
+    ParseHasher b;
+    b.PushScope();
+    b.PushScope();
+    b.MixToken(5);
+    const std::uint64_t second = b.PopScope(false);
+    EXPECT_EQ(first, second);
+}
+
+TEST(ParseHasher, MixIntoParent) {
+    ParseHasher a, b;
+    a.PushScope();
+    a.PushScope();
+    a.MixToken(3);
+    const std::uint64_t inner = a.PopScope(true);
+    const std::uint64_t outer = a.PopScope(false);
+
+    b.PushScope();
+    b.MixWord(inner);
+    EXPECT_EQ(outer, b.PopScope(false));
+    EXPECT_NE(outer, inner);
+}
+
+TEST(ParseHasher, RootScopeIsNeverPopped) {
+    ParseHasher h;
+    EXPECT_EQ(h.Depth(), 1u);
+    h.MixToken(1);
+    const std::uint64_t root = h.PopScope(false);
+    EXPECT_EQ(h.Depth(), 1u);
+    EXPECT_EQ(root, h.Peek());
+    h.PushScope();
+    EXPECT_EQ(h.Depth(), 2u);
+    h.BeginParse();
+    EXPECT_EQ(h.Depth(), 1u);
+}
+
+TEST(ParseHasher, PeekMatchesPop) {
+    ParseHasher h;
+    h.PushScope();
+    h.MixToken(11);
+    const std::uint64_t peeked = h.Peek();
+    EXPECT_EQ(peeked, h.PopScope(false));
+}
+
+TEST(ParseHasher, SlotHashesAreMixedWhereUsed) {
+    ParseHasher h;
+    void *slotA = nullptr;
+    void *slotB = nullptr;
+    h.SetSlotHash(&slotA, 1234);
+    h.SetSlotHash(&slotB, 1234);
+    std::uint64_t value = 0;
+    ASSERT_TRUE(h.SlotHash(&slotA, value));
+    EXPECT_EQ(value, 1234u);
+
+    // Two identifiers with the same content hash the same where used.
+    h.PushScope();
+    h.MixSlot(&slotA);
+    const std::uint64_t useA = h.PopScope(false);
+    h.PushScope();
+    h.MixSlot(&slotB);
+    EXPECT_EQ(useA, h.PopScope(false));
+
+    // Different content, different hash.
+    h.SetSlotHash(&slotB, 1235);
+    h.PushScope();
+    h.MixSlot(&slotB);
+    EXPECT_NE(useA, h.PopScope(false));
+}
+
+TEST(ParseHasher, UnknownSlotAlwaysCountsAsChanged) {
+    ParseHasher h;
+    void *slot = nullptr;
+    std::set<std::uint64_t> seen;
+    for (int i = 0; i < 100; ++i) {
+        h.PushScope();
+        h.MixSlot(&slot);
+        seen.insert(h.PopScope(false));
+    }
+    EXPECT_EQ(seen.size(), 100u);
+    h.PushScope();
+    h.MixSlot(nullptr);
+    EXPECT_EQ(seen.count(h.PopScope(false)), 0u);
+
+    std::set<std::uint64_t> unique;
+    for (int i = 0; i < 1000; ++i) unique.insert(povrayfc::UniqueHashValue());
+    EXPECT_EQ(unique.size(), 1000u);
+}
+
+TEST(ParseHasher, ForgetAndCopySlots) {
+    ParseHasher h;
+    void *from[3] = {nullptr, nullptr, nullptr};
+    void *to[3] = {nullptr, nullptr, nullptr};
+    h.SetSlotHash(&from[0], 10);
+    h.SetSlotHash(&from[2], 12);
+    h.SetSlotHash(&to[1], 99);   // stale: from[1] has none, so to[1] must lose it
+    h.CopySlots(from, to, 3);
+    std::uint64_t value = 0;
+    ASSERT_TRUE(h.SlotHash(&to[0], value));
+    EXPECT_EQ(value, 10u);
+    EXPECT_FALSE(h.SlotHash(&to[1], value));
+    ASSERT_TRUE(h.SlotHash(&to[2], value));
+    EXPECT_EQ(value, 12u);
+
+    h.ForgetSlots(to, 3);
+    EXPECT_FALSE(h.SlotHash(&to[0], value));
+    EXPECT_FALSE(h.SlotHash(&to[2], value));
+    EXPECT_TRUE(h.SlotHash(&from[0], value));
+    h.ForgetSlot(&from[0]);
+    EXPECT_FALSE(h.SlotHash(&from[0], value));
+    EXPECT_EQ(h.SlotCount(), 1u);
+    h.BeginParse();
+    EXPECT_EQ(h.SlotCount(), 0u);
+}
+
+// ---------------------------------------------------------------------------------------
+// SignatureBuilder
+
+namespace {
+const float kLowerLeft[3] = {-1.0f, -2.0f, -3.0f};
+const float kLengths[3] = {2.0f, 4.0f, 6.0f};
+}  // namespace
+
+TEST(SignatureBuilder, ClassifiesItems) {
+    SignatureBuilder b;
+    b.BeginItem("camera", 1);
+    b.EndItem(ParseItemClass::kCamera, 11, false);
+    b.BeginItem("global_settings", 2);
+    b.EndItem(ParseItemClass::kGlobal, 22, false);
+    b.BeginItem("light_source", 3);
+    b.SetItemObject(kLowerLeft, kLengths, false, true);
+    b.EndItem(ParseItemClass::kObject, 33, true);
+    b.BeginItem("sphere", 4);
+    b.SetItemObject(kLowerLeft, kLengths, false, false);
+    b.EndItem(ParseItemClass::kObject, 44, false);
+    b.BeginItem("declare", 5);
+    b.EndItem(ParseItemClass::kDiscard, 55, false);
+
+    const SceneSignature &s = b.Signature();
+    EXPECT_NE(s.camera, 0u);
+    EXPECT_NE(s.global, 0u);
+    EXPECT_NE(s.lights, 0u);
+    ASSERT_EQ(s.objects.size(), 1u);   // the light is not an object
+    EXPECT_EQ(s.objects[0].hash, 44u);
+    EXPECT_FALSE(s.objects[0].infinite);
+    EXPECT_FALSE(s.complete);
+
+    const SceneSignature done = b.Finish();
+    EXPECT_TRUE(done.complete);
+    EXPECT_EQ(done.objects.size(), 1u);
+    // Finish resets the builder.
+    EXPECT_TRUE(b.Signature().objects.empty());
+    EXPECT_FALSE(b.Signature().complete);
+}
+
+TEST(SignatureBuilder, UnionWithLightIsObjectAndLight) {
+    SignatureBuilder a;
+    a.BeginItem("union", 1);
+    a.SetItemObject(kLowerLeft, kLengths, false, false);
+    a.EndItem(ParseItemClass::kObject, 7, true);
+    EXPECT_EQ(a.Signature().objects.size(), 1u);
+    EXPECT_NE(a.Signature().lights, 0u);
+
+    SignatureBuilder b;   // the same union without the light
+    b.BeginItem("union", 1);
+    b.SetItemObject(kLowerLeft, kLengths, false, false);
+    b.EndItem(ParseItemClass::kObject, 7, false);
+    EXPECT_EQ(b.Signature().lights, 0u);
+}
+
+TEST(SignatureBuilder, CameraLightsGlobalAreOrderSensitive) {
+    SignatureBuilder a, b, c;
+    a.MixLights(1);
+    a.MixLights(2);
+    b.MixLights(2);
+    b.MixLights(1);
+    c.MixLights(1);
+    c.MixLights(2);
+    EXPECT_NE(a.Signature().lights, b.Signature().lights);
+    EXPECT_EQ(a.Signature().lights, c.Signature().lights);
+    a.MixGlobal(5);
+    EXPECT_NE(a.Signature().global, b.Signature().global);
+}
+
+TEST(SignatureBuilder, ObjectWithoutBoundsGoesGlobal) {
+    SignatureBuilder b;
+    b.BeginItem("thing", 1);
+    b.EndItem(ParseItemClass::kObject, 9, false);
+    EXPECT_TRUE(b.Signature().objects.empty());
+    EXPECT_NE(b.Signature().global, 0u);
+}
+
+TEST(SignatureBuilder, BoundsAreConservative) {
+    Box box;
+    ASSERT_TRUE(SignatureBuilder::ObjectBox(kLowerLeft, kLengths, box));
+    EXPECT_LT(box.lo.x, -1.0);
+    EXPECT_LT(box.lo.y, -2.0);
+    EXPECT_LT(box.lo.z, -3.0);
+    EXPECT_GT(box.hi.x, 1.0);
+    EXPECT_GT(box.hi.y, 2.0);
+    EXPECT_GT(box.hi.z, 3.0);
+    // ... but only a little.
+    EXPECT_GT(box.lo.x, -1.01);
+    EXPECT_LT(box.hi.z, 3.01);
+
+    // Far from the origin the pad grows with the coordinates (float rounding is relative).
+    const float farLow[3] = {1e6f, 0.0f, 0.0f};
+    const float unit[3] = {1.0f, 1.0f, 1.0f};
+    ASSERT_TRUE(SignatureBuilder::ObjectBox(farLow, unit, box));
+    EXPECT_LE(box.lo.x, 1e6 - 1e6 * 1e-5);
+    EXPECT_GE(box.hi.x, 1e6 + 1.0 + 1e6 * 1e-5);
+
+    // A degenerate (flat) box still gets a thickness.
+    const float flat[3] = {1.0f, 0.0f, 1.0f};
+    ASSERT_TRUE(SignatureBuilder::ObjectBox(kLowerLeft, flat, box));
+    EXPECT_LT(box.lo.y, box.hi.y);
+}
+
+TEST(SignatureBuilder, HugeOrBrokenBoxesAreInfinite) {
+    const float huge[3] = {2e10f, 2e10f, 2e10f};
+    const float hugeLow[3] = {-1e10f, -1e10f, -1e10f};
+    const float inf = std::numeric_limits<float>::infinity();
+    const float nan = std::numeric_limits<float>::quiet_NaN();
+    const float infLength[3] = {1.0f, inf, 1.0f};
+    const float nanLow[3] = {nan, 0.0f, 0.0f};
+    const float negative[3] = {1.0f, -1.0f, 1.0f};
+    Box box;
+    EXPECT_FALSE(SignatureBuilder::ObjectBox(hugeLow, huge, box));
+    EXPECT_FALSE(SignatureBuilder::ObjectBox(kLowerLeft, infLength, box));
+    EXPECT_FALSE(SignatureBuilder::ObjectBox(nanLow, kLengths, box));
+    EXPECT_FALSE(SignatureBuilder::ObjectBox(kLowerLeft, negative, box));
+
+    SignatureBuilder b;
+    b.BeginItem("plane", 1);
+    b.SetItemObject(hugeLow, huge, false, false);
+    b.EndItem(ParseItemClass::kObject, 1, false);
+    b.BeginItem("sphere", 2);
+    b.SetItemObject(kLowerLeft, kLengths, true, false);   // inverted / INFINITE_FLAG
+    b.EndItem(ParseItemClass::kObject, 2, false);
+    ASSERT_EQ(b.Signature().objects.size(), 2u);
+    EXPECT_TRUE(b.Signature().objects[0].infinite);
+    EXPECT_TRUE(b.Signature().objects[1].infinite);
+}
+
+TEST(SignatureBuilder, InexactEffectsOnceInOrder) {
+    SignatureBuilder b;
+    b.NoteMedia(3, 0.0);
+    b.NoteFinish(0.0, false);
+    b.NoteAreaLight(true, false);
+    b.NoteAreaLight(false, true);
+    b.NoteRadiosity(false);
+    b.NotePhotons(false);
+    b.NoteSubsurface(false);
+    EXPECT_TRUE(b.Signature().inexactEffects.empty());
+
+    b.NoteFinish(0.1, false);
+    b.NoteMedia(1, 0.0);
+    b.NoteMedia(2, 0.5);
+    b.NoteFinish(0.3, true);
+    b.NoteAreaLight(true, true);
+    b.NoteInexact("isosurface evaluate");
+    b.NoteRadiosity(true);
+    b.NotePhotons(true);
+    b.NoteSubsurface(true);
+    b.NoteMedia(1, 0.0);
+    const std::vector<std::string> expected = {
+        "crand", "media method 1", "media method 2", "media jitter", "subsurface",
+        "jittered area light", "isosurface evaluate", "radiosity", "photons"};
+    EXPECT_EQ(b.Signature().inexactEffects, expected);
+}
+
+TEST(SignatureBuilder, DebugListingNamesItems) {
+    setenv("POVRAYFC_DEBUG_SIGNATURES", "1", 1);
+    SignatureBuilder b;   // reads the variable on Reset
+    unsetenv("POVRAYFC_DEBUG_SIGNATURES");
+    b.BeginItem("sphere", 12);
+    b.SetItemObject(kLowerLeft, kLengths, false, false);
+    b.EndItem(ParseItemClass::kObject, 0xabcdefULL, false);
+    b.BeginItem("plane", 13);
+    b.SetItemObject(kLowerLeft, kLengths, true, false);
+    b.EndItem(ParseItemClass::kObject, 0x1ULL, false);
+    b.BeginItem("camera", 14);
+    b.EndItem(ParseItemClass::kCamera, 0x2ULL, false);
+    b.NoteInexact("crand");
+    const std::string listing = b.DebugListing();
+    EXPECT_NE(listing.find("povrayfc-signature: item 0 object 0000000000abcdef line=12 label=sphere bounds="),
+              std::string::npos) << listing;
+    EXPECT_NE(listing.find("item 1 object 0000000000000001 line=13 label=plane infinite"),
+              std::string::npos) << listing;
+    EXPECT_NE(listing.find("item 2 camera 0000000000000002 line=14 label=camera"), std::string::npos)
+        << listing;
+    EXPECT_NE(listing.find("povrayfc-signature: inexact crand"), std::string::npos);
+    EXPECT_NE(listing.find("povrayfc-signature: objects 2"), std::string::npos);
+
+    SignatureBuilder quiet;   // without the variable no items are kept
+    quiet.BeginItem("sphere", 1);
+    quiet.SetItemObject(kLowerLeft, kLengths, false, false);
+    quiet.EndItem(ParseItemClass::kObject, 5, false);
+    EXPECT_EQ(quiet.DebugListing().find("item 0"), std::string::npos);
+}
