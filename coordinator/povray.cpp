@@ -1,0 +1,268 @@
+// povray.cpp - POV-Ray option probe, output names and console-output parsers.
+#include "povray.h"
+
+#include <poll.h>
+#include <sys/wait.h>
+
+#include <algorithm>
+#include <cctype>
+#include <cstdio>
+#include <cstring>
+
+#include "util.h"
+
+namespace fc {
+
+const char *const kFrameCoherenceOption = "Frame_Coherence=on";
+const char *const kFrameCoherenceFeature = "Frame coherence";
+
+namespace {
+
+const char *const kProbeMarker = "fc-master probe: options read";
+
+// Run argv to completion (or timeout), collecting all output lines.
+bool run_collect(const std::vector<std::string> &argv, const std::string &cwd, double timeout,
+                 std::vector<std::string> &lines, int &status, std::string &err)
+{
+    Child child;
+    if (!start_child(argv, cwd, 0, child, err))
+        return false;
+    double deadline = now() + timeout;
+    while (child.fd >= 0) {
+        struct pollfd p = {child.fd, POLLIN, 0};
+        int left = int((deadline - now()) * 1000);
+        if (left <= 0) {
+            kill_child(child);
+            err = strf("%s did not finish within %.0f s", argv[0].c_str(), timeout);
+            return false;
+        }
+        poll(&p, 1, std::min(left, 500));
+        read_child(child, lines);
+    }
+    if (!wait_child(child, std::max(1.0, deadline - now()), status)) {
+        kill_child(child);
+        err = strf("%s did not exit within %.0f s", argv[0].c_str(), timeout);
+        return false;
+    }
+    return true;
+}
+
+// Join POV-Ray's 80-column wrapped physical lines starting at index i until `until` appears.
+std::string join_until(const std::vector<std::string> &lines, size_t i, const char *until)
+{
+    std::string s;
+    for (size_t k = i; k < lines.size() && k < i + 20; k++) {
+        s += lines[k];
+        if (s.find(until) != std::string::npos)
+            break;
+    }
+    return s;
+}
+
+bool is_noise(const std::string &line)
+{
+    return line.find("cannot open the user configuration file") != std::string::npos ||
+           starts_with(line, "Rendered ") || starts_with(line, "----") ||
+           starts_with(line, "====") || line.find(kProbeMarker) != std::string::npos;
+}
+
+} // namespace
+
+int frame_digits(int final_frame, bool cyclic)
+{
+    int f = final_frame + (cyclic ? 1 : 0);
+    int digits = 1;
+    for (int i = f; i >= 10; i /= 10)
+        digits++;
+    return digits;
+}
+
+std::string frame_file_name(const std::string &stem, int digits, int frame)
+{
+    if (digits <= 0)
+        return stem + ".tga";
+    return stem + strf("%0*d", digits, frame) + ".tga";
+}
+
+bool probe_scene(const std::string &renderer, const std::vector<std::string> &options,
+                 const std::string &cwd, const std::string &tmpdir, double timeout,
+                 SceneInfo &info, std::string &err)
+{
+    std::string inc = tmpdir + "/fc-probe.inc";
+    if (!write_text(inc, strf("#error \"%s\"\n", kProbeMarker), err))
+        return false;
+    std::vector<std::string> argv = {renderer};
+    argv.insert(argv.end(), options.begin(), options.end());
+    argv.insert(argv.end(), {"-D", "+FT", "-UA", "+HI" + inc});
+    std::vector<std::string> lines;
+    int status = 0;
+    if (!run_collect(argv, cwd, timeout, lines, status, err))
+        return false;
+
+    bool marker = false, have_res = false, have_out = false;
+    int subset_count = 1;
+    for (size_t i = 0; i < lines.size(); i++) {
+        const std::string &l = lines[i];
+        int a, b, c, d, e, f;
+        char on[8];
+        if (l.find(kProbeMarker) != std::string::npos)
+            marker = true;
+        else if (sscanf(l.c_str(), "Rendering frame %d of %d", &a, &b) == 2)
+            subset_count = b, info.animated = true;
+        else if (sscanf(l.c_str(), " Initial Frame: %d Final Frame: %d", &a, &b) == 2)
+            info.initial_frame = a, info.final_frame = b, info.animated = true;
+        else if (sscanf(l.c_str(), " Frame Step: %d", &a) == 1)
+            info.frame_step = std::max(1, a);
+        else if (sscanf(l.c_str(), " Cyclic Animation.....%7s", on) == 1)
+            info.cyclic = strncmp(on, "On", 2) == 0;
+        else if (sscanf(l.c_str(), " Image resolution.....%d by %d (rows %d to %d, columns %d to %d",
+                        &a, &b, &c, &d, &e, &f) == 6) {
+            info.width = a, info.height = b;
+            info.area = Rect{e - 1, c - 1, f, d};
+            have_res = true;
+        } else if (starts_with(trim(l), "Output file..........")) {
+            std::string joined = join_until(lines, i, " bpp Targa");
+            size_t start = joined.find("Output file..........") + strlen("Output file..........");
+            size_t end = joined.rfind(", ");
+            if (end != std::string::npos && end > start) {
+                info.output_name = joined.substr(start, end - start);
+                have_out = true;
+            }
+        }
+    }
+    if (!marker || !have_res || !have_out) {
+        std::string excerpt = error_excerpt(lines);
+        if (excerpt.empty()) {
+            // Nothing recognisable: show the end of the output.
+            for (size_t k = lines.size() > 8 ? lines.size() - 8 : 0; k < lines.size(); k++)
+                if (!is_noise(lines[k]))
+                    excerpt += lines[k] + "\n";
+        }
+        err = strf("%s rejected the scene or its options (%s):\n%s", renderer.c_str(),
+                  describe_status(status).c_str(), excerpt.c_str());
+        return false;
+    }
+    if (info.width <= 0 || info.height <= 0 || info.area.width() <= 0 || info.area.height() <= 0 ||
+        info.area.x0 < 0 || info.area.y0 < 0 || info.area.x1 > info.width ||
+        info.area.y1 > info.height) {
+        err = strf("%s reported an unusable image size %dx%d", renderer.c_str(), info.width,
+                  info.height);
+        return false;
+    }
+
+    // Name: POV-Ray printed the first frame's name; strip ".tga" and the padded frame number.
+    std::string name = info.output_name;
+    if (name.size() < 4 || name.compare(name.size() - 4, 4, ".tga") != 0) {
+        err = "unexpected output file name from POV-Ray: " + name;
+        return false;
+    }
+    name.resize(name.size() - 4);
+    info.frames.clear();
+    if (info.animated) {
+        info.digits = frame_digits(info.final_frame, info.cyclic);
+        // The first subset frame is encoded in the name; its digits end the name.
+        size_t nd = 0;
+        while (nd < name.size() && isdigit((unsigned char)name[name.size() - 1 - nd]))
+            nd++;
+        if (nd < size_t(info.digits)) {
+            err = "cannot find the frame number in POV-Ray's output name " + info.output_name;
+            return false;
+        }
+        std::string num = name.substr(name.size() - size_t(info.digits));
+        int first = atoi(num.c_str());
+        info.stem = name.substr(0, name.size() - size_t(info.digits));
+        int last = first + subset_count - 1;
+        for (int f = first; f <= last; f += info.frame_step)
+            info.frames.push_back(f);
+    } else {
+        info.digits = 0;
+        info.stem = name;
+        info.frames.push_back(0);
+    }
+    if (info.frames.empty()) {
+        err = "no frames to render";
+        return false;
+    }
+    return true;
+}
+
+bool renderer_version(const std::string &renderer, bool &has_fc, std::string &first_line,
+                      std::string &err)
+{
+    std::vector<std::string> lines;
+    int status = 0;
+    if (!run_collect({renderer, "--version"}, "", 30, lines, status, err))
+        return false;
+    if (!WIFEXITED(status) || WEXITSTATUS(status) == 126 || WEXITSTATUS(status) == 127) {
+        err = strf("%s --version failed (%s)", renderer.c_str(), describe_status(status).c_str());
+        for (const std::string &l : lines)
+            if (!is_noise(l))
+                err += "\n" + l;
+        return false;
+    }
+    has_fc = false;
+    first_line.clear();
+    std::string want = kFrameCoherenceFeature;
+    std::transform(want.begin(), want.end(), want.begin(), ::tolower);
+    for (const std::string &l : lines) {
+        if (is_noise(l))
+            continue;
+        if (first_line.empty())
+            first_line = l;
+        std::string low = l;
+        std::transform(low.begin(), low.end(), low.begin(), ::tolower);
+        if (low.find(want) != std::string::npos)
+            has_fc = true;
+    }
+    return true;
+}
+
+bool parse_rendering_frame(const std::string &line, int &k, int &n)
+{
+    return sscanf(line.c_str(), "Rendering frame %d of %d", &k, &n) == 2;
+}
+
+bool parse_rays(const std::string &line, double &rays)
+{
+    return sscanf(line.c_str(), "Rays: %lf", &rays) == 1;
+}
+
+bool parse_aa(const std::string &line, int &method)
+{
+    std::string t = trim(line);
+    if (!starts_with(t, "Antialiasing......"))
+        return false;
+    const char *m = strstr(t.c_str(), "(Method ");
+    method = m ? atoi(m + 8) : 0;
+    return true;
+}
+
+bool parse_rendered(const std::string &line, int &done, int &total)
+{
+    return sscanf(line.c_str(), "Rendered %d of %d pixels", &done, &total) == 2;
+}
+
+std::string error_excerpt(const std::vector<std::string> &tail)
+{
+    size_t first = tail.size();
+    for (size_t i = 0; i < tail.size(); i++) {
+        const std::string &l = tail[i];
+        if (is_noise(l))
+            continue;
+        if (l.find("Error") != std::string::npos || l.find("error") != std::string::npos ||
+            l.find("Failed") != std::string::npos || l.find("Problem with") != std::string::npos ||
+            l.find("fc: cannot") != std::string::npos) {
+            first = i;
+            break;
+        }
+    }
+    std::string out;
+    for (size_t i = first; i < tail.size(); i++) {
+        if (is_noise(tail[i]))
+            continue;
+        out += tail[i] + "\n";
+    }
+    return out;
+}
+
+} // namespace fc

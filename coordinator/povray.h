@@ -1,0 +1,64 @@
+// povray.h - what fc-master and fc-slave know about POV-Ray 3.7: its options, its console
+// output, and its output file names.
+//
+// The master does not re-implement POV-Ray's option and INI processing (default povray.ini,
+// Include_INI, sections, ... ). It asks POV-Ray itself: it runs the renderer once with the
+// user's options plus an Include_Header that stops the parser at its first token (#error).
+// POV-Ray prints its resolved options (resolution, render area, animation frames and clock,
+// output file name) before parsing, so the probe learns them exactly as a real render would
+// use them, renders nothing and writes no file. See probe_scene().
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "protocol.h"
+
+namespace fc {
+
+// Frame coherence: the INI option the master appends unless --no-fc, and the text POV-Ray's
+// --version output contains when the renderer supports it.
+extern const char *const kFrameCoherenceOption;    // "Frame_Coherence=on"
+extern const char *const kFrameCoherenceFeature;   // "Frame coherence"
+
+struct SceneInfo {
+    int width = 0, height = 0;
+    Rect area;                      // render area (+SC/+EC/+SR/+ER), 0-based half-open
+    bool animated = false;
+    int initial_frame = 0, final_frame = 0, frame_step = 1;
+    bool cyclic = false;
+    std::vector<int> frames;        // frames to render (subset, step applied); {0} for a still
+    std::string output_name;        // POV-Ray's output file name for the first frame
+    std::string stem;               // output_name without frame number and ".tga"
+    int digits = 0;                 // frame number digits in names (0 for a still)
+};
+
+// Run `renderer options... -D +FT -UA +HI<probe.inc>` in cwd (tmpdir holds the probe include,
+// it must be readable under POV-Ray's I/O restrictions, e.g. below /tmp). On success fills
+// info; on failure err holds POV-Ray's own error lines.
+bool probe_scene(const std::string &renderer, const std::vector<std::string> &options,
+                 const std::string &cwd, const std::string &tmpdir, double timeout,
+                 SceneInfo &info, std::string &err);
+
+// Run `renderer --version`; true if it ran. has_fc tells whether it supports frame coherence.
+bool renderer_version(const std::string &renderer, bool &has_fc, std::string &first_line,
+                      std::string &err);
+
+// Output file name of frame (POV-Ray's scheme: stem + frame zero-padded to digits + ".tga";
+// a still image has no number).
+std::string frame_file_name(const std::string &stem, int digits, int frame);
+
+// Digits POV-Ray uses for frame numbers: those of the final frame (+1 when cyclic).
+int frame_digits(int final_frame, bool cyclic);
+
+// Parsers for one physical line of POV-Ray's console output; each returns true on a match.
+bool parse_rendering_frame(const std::string &line, int &k, int &n);  // "Rendering frame k of n"
+bool parse_rays(const std::string &line, double &rays);               // "Rays:   12345 ..."
+bool parse_aa(const std::string &line, int &method);                  // "Antialiasing....On (Method 2"
+bool parse_rendered(const std::string &line, int &done, int &total);  // "Rendered 10 of 20 pixels"
+
+// From the tail of a failed run, the lines that explain it (from the first error line on),
+// without POV-Ray's noise (config-file warnings, statistics).
+std::string error_excerpt(const std::vector<std::string> &tail);
+
+} // namespace fc

@@ -1,0 +1,358 @@
+// util.cpp - small helpers shared by fc-master and fc-slave.
+#include "util.h"
+
+#include <dirent.h>
+#include <fcntl.h>
+#include <poll.h>
+#include <signal.h>
+#include <sys/prctl.h>
+#include <sys/resource.h>
+#include <sys/stat.h>
+#include <sys/wait.h>
+#include <time.h>
+#include <unistd.h>
+
+#include <cerrno>
+#include <climits>
+#include <cstdio>
+#include <cstdlib>
+#include <cstring>
+
+namespace fc {
+
+std::string strf(const char *format, ...)
+{
+    va_list ap;
+    va_start(ap, format);
+    char small[512];
+    va_list ap2;
+    va_copy(ap2, ap);
+    int n = vsnprintf(small, sizeof small, format, ap);
+    va_end(ap);
+    if (n < 0) {
+        va_end(ap2);
+        return std::string();
+    }
+    if (size_t(n) < sizeof small) {
+        va_end(ap2);
+        return std::string(small, size_t(n));
+    }
+    std::string out(size_t(n) + 1, '\0');
+    vsnprintf(&out[0], out.size(), format, ap2);
+    va_end(ap2);
+    out.resize(size_t(n));
+    return out;
+}
+
+bool sys_fail(std::string &err, const std::string &call)
+{
+    err = call + ": " + strerror(errno);
+    return false;
+}
+
+double now()
+{
+    struct timespec ts;
+    clock_gettime(CLOCK_MONOTONIC, &ts);
+    return double(ts.tv_sec) + double(ts.tv_nsec) * 1e-9;
+}
+
+std::string host_name()
+{
+    char buf[256];
+    if (gethostname(buf, sizeof buf - 1) != 0)
+        return "localhost";
+    buf[sizeof buf - 1] = '\0';
+    return buf;
+}
+
+int cpu_count()
+{
+    long n = sysconf(_SC_NPROCESSORS_ONLN);
+    return n < 1 ? 1 : int(n);
+}
+
+std::string self_dir()
+{
+    char buf[PATH_MAX];
+    ssize_t n = readlink("/proc/self/exe", buf, sizeof buf - 1);
+    if (n <= 0)
+        return ".";
+    buf[n] = '\0';
+    return dir_name(buf);
+}
+
+std::string dir_name(const std::string &path)
+{
+    size_t slash = path.find_last_of('/');
+    if (slash == std::string::npos)
+        return ".";
+    if (slash == 0)
+        return "/";
+    return path.substr(0, slash);
+}
+
+std::string base_name(const std::string &path)
+{
+    size_t slash = path.find_last_of('/');
+    return slash == std::string::npos ? path : path.substr(slash + 1);
+}
+
+bool file_exists(const std::string &path)
+{
+    struct stat st;
+    return stat(path.c_str(), &st) == 0;
+}
+
+bool is_executable(const std::string &path)
+{
+    struct stat st;
+    return stat(path.c_str(), &st) == 0 && S_ISREG(st.st_mode) && access(path.c_str(), X_OK) == 0;
+}
+
+std::string which(const std::string &name)
+{
+    if (name.find('/') != std::string::npos)
+        return is_executable(name) ? name : std::string();
+    const char *path = getenv("PATH");
+    std::string dirs = path ? path : "/usr/local/bin:/usr/bin:/bin";
+    size_t start = 0;
+    while (start <= dirs.size()) {
+        size_t end = dirs.find(':', start);
+        if (end == std::string::npos)
+            end = dirs.size();
+        std::string dir = dirs.substr(start, end - start);
+        if (!dir.empty()) {
+            std::string cand = dir + "/" + name;
+            if (is_executable(cand))
+                return cand;
+        }
+        start = end + 1;
+    }
+    return std::string();
+}
+
+bool make_temp_dir(const std::string &parent, const std::string &prefix, std::string &dir,
+                   std::string &err)
+{
+    std::string templ = parent + "/" + prefix + "XXXXXX";
+    std::vector<char> buf(templ.begin(), templ.end());
+    buf.push_back('\0');
+    if (!mkdtemp(buf.data()))
+        return sys_fail(err, "mkdtemp " + templ);
+    dir = buf.data();
+    return true;
+}
+
+void remove_tree(const std::string &path)
+{
+    struct stat st;
+    if (lstat(path.c_str(), &st) != 0)
+        return;
+    if (S_ISDIR(st.st_mode)) {
+        if (DIR *d = opendir(path.c_str())) {
+            while (struct dirent *e = readdir(d)) {
+                if (strcmp(e->d_name, ".") == 0 || strcmp(e->d_name, "..") == 0)
+                    continue;
+                remove_tree(path + "/" + e->d_name);
+            }
+            closedir(d);
+        }
+        rmdir(path.c_str());
+    } else {
+        unlink(path.c_str());
+    }
+}
+
+void remove_stale_dirs(const std::string &parent, const std::string &prefix)
+{
+    DIR *d = opendir(parent.c_str());
+    if (!d)
+        return;
+    while (struct dirent *e = readdir(d)) {
+        std::string name = e->d_name;
+        if (!starts_with(name, prefix))
+            continue;
+        int pid = atoi(name.c_str() + prefix.size());
+        if (pid <= 0 || name.find('-', prefix.size()) == std::string::npos)
+            continue;
+        std::string path = parent + "/" + name;
+        struct stat st;
+        if (lstat(path.c_str(), &st) != 0 || !S_ISDIR(st.st_mode) || st.st_uid != getuid())
+            continue;
+        if (kill(pid, 0) == 0 || errno == EPERM)
+            continue;   // still running
+        remove_tree(path);
+    }
+    closedir(d);
+}
+
+bool write_text(const std::string &path, const std::string &text, std::string &err)
+{
+    FILE *f = fopen(path.c_str(), "w");
+    if (!f)
+        return sys_fail(err, "fopen " + path);
+    bool ok = fwrite(text.data(), 1, text.size(), f) == text.size();
+    if (fclose(f) != 0)
+        ok = false;
+    if (!ok)
+        return sys_fail(err, "write " + path);
+    return true;
+}
+
+void LineSplitter::feed(const char *data, size_t n, std::vector<std::string> &out)
+{
+    for (size_t i = 0; i < n; i++) {
+        char c = data[i];
+        if (c == '\n' || c == '\r') {
+            if (!partial_.empty())
+                out.push_back(partial_);
+            partial_.clear();
+        } else {
+            partial_ += c;
+        }
+    }
+}
+
+std::string LineSplitter::rest()
+{
+    std::string r;
+    r.swap(partial_);
+    return r;
+}
+
+bool start_child(const std::vector<std::string> &argv, const std::string &cwd, int nice_inc,
+                 Child &child, std::string &err)
+{
+    int fds[2];
+    if (pipe2(fds, O_CLOEXEC) != 0)
+        return sys_fail(err, "pipe2");
+    pid_t parent = getpid();
+    pid_t pid = fork();
+    if (pid < 0) {
+        close(fds[0]);
+        close(fds[1]);
+        return sys_fail(err, "fork");
+    }
+    if (pid == 0) {
+        // Die with the parent: a killed slave must not leave a renderer running.
+        prctl(PR_SET_PDEATHSIG, SIGKILL);
+        if (getppid() != parent)
+            _exit(127);
+        setpgid(0, 0);
+        signal(SIGPIPE, SIG_DFL);
+        signal(SIGINT, SIG_DFL);
+        signal(SIGTERM, SIG_DFL);
+        sigset_t none;
+        sigemptyset(&none);
+        sigprocmask(SIG_SETMASK, &none, nullptr);
+        dup2(fds[1], 1);
+        dup2(fds[1], 2);
+        int devnull = open("/dev/null", O_RDONLY);
+        if (devnull >= 0)
+            dup2(devnull, 0);
+        if (nice_inc > 0)
+            setpriority(PRIO_PROCESS, 0, nice_inc);
+        if (!cwd.empty() && chdir(cwd.c_str()) != 0) {
+            dprintf(2, "fc: cannot enter directory %s: %s\n", cwd.c_str(), strerror(errno));
+            _exit(126);
+        }
+        std::vector<char *> av;
+        for (const std::string &a : argv)
+            av.push_back(const_cast<char *>(a.c_str()));
+        av.push_back(nullptr);
+        execv(av[0], av.data());
+        dprintf(2, "fc: cannot run %s: %s\n", av[0], strerror(errno));
+        _exit(127);
+    }
+    close(fds[1]);
+    fcntl(fds[0], F_SETFL, fcntl(fds[0], F_GETFL) | O_NONBLOCK);
+    child.pid = pid;
+    child.fd = fds[0];
+    return true;
+}
+
+bool read_child(Child &child, std::vector<std::string> &lines)
+{
+    if (child.fd < 0)
+        return false;
+    char buf[8192];
+    for (;;) {
+        ssize_t n = read(child.fd, buf, sizeof buf);
+        if (n > 0) {
+            child.lines.feed(buf, size_t(n), lines);
+            continue;
+        }
+        if (n < 0 && errno == EINTR)
+            continue;
+        if (n < 0 && (errno == EAGAIN || errno == EWOULDBLOCK))
+            return true;
+        // EOF or hard error: flush the last partial line.
+        std::string rest = child.lines.rest();
+        if (!rest.empty())
+            lines.push_back(rest);
+        close(child.fd);
+        child.fd = -1;
+        return false;
+    }
+}
+
+void kill_child(Child &child)
+{
+    if (child.pid > 0) {
+        kill(-child.pid, SIGKILL);
+        kill(child.pid, SIGKILL);
+        int status;
+        while (waitpid(child.pid, &status, 0) < 0 && errno == EINTR) {
+        }
+        child.pid = -1;
+    }
+    if (child.fd >= 0) {
+        close(child.fd);
+        child.fd = -1;
+    }
+}
+
+bool wait_child(Child &child, double timeout, int &status)
+{
+    if (child.pid <= 0)
+        return false;
+    double deadline = now() + timeout;
+    for (;;) {
+        pid_t r = waitpid(child.pid, &status, WNOHANG);
+        if (r == child.pid) {
+            child.pid = -1;
+            return true;
+        }
+        if (r < 0 && errno != EINTR)
+            return false;
+        if (now() >= deadline)
+            return false;
+        usleep(5000);
+    }
+}
+
+std::string describe_status(int status)
+{
+    if (WIFEXITED(status))
+        return strf("exit status %d", WEXITSTATUS(status));
+    if (WIFSIGNALED(status))
+        return strf("killed by signal %d (%s)", WTERMSIG(status), strsignal(WTERMSIG(status)));
+    return strf("wait status %d", status);
+}
+
+std::string trim(const std::string &s)
+{
+    size_t a = s.find_first_not_of(" \t");
+    if (a == std::string::npos)
+        return std::string();
+    size_t b = s.find_last_not_of(" \t");
+    return s.substr(a, b - a + 1);
+}
+
+bool starts_with(const std::string &s, const std::string &prefix)
+{
+    return s.compare(0, prefix.size(), prefix) == 0;
+}
+
+} // namespace fc

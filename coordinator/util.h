@@ -1,0 +1,98 @@
+// util.h - small helpers shared by fc-master and fc-slave: formatting, time, files, child processes.
+//
+// One error convention everywhere: a function that can fail returns bool (true = OK) and
+// fills a caller-owned std::string with a message that names the failing call and, for
+// system calls, strerror(errno).
+#pragma once
+
+#include <sys/types.h>
+
+#include <cstdarg>
+#include <string>
+#include <vector>
+
+namespace fc {
+
+// printf into a std::string.
+std::string strf(const char *format, ...) __attribute__((format(printf, 1, 2)));
+
+// Fill err with "<call>: <strerror(errno)>" and return false.
+bool sys_fail(std::string &err, const std::string &call);
+
+// Seconds since an arbitrary fixed point (CLOCK_MONOTONIC).
+double now();
+
+// This machine's host name (gethostname), and its number of online CPUs (>= 1).
+std::string host_name();
+int cpu_count();
+
+// Absolute path of the running executable's directory (from /proc/self/exe).
+std::string self_dir();
+
+// Directory that holds path ("." when none), and the last component of path.
+std::string dir_name(const std::string &path);
+std::string base_name(const std::string &path);
+
+bool file_exists(const std::string &path);
+bool is_executable(const std::string &path);
+
+// Search PATH for an executable; returns "" when not found. Absolute names are checked as is.
+std::string which(const std::string &name);
+
+// Create a fresh private directory "<parent>/<prefix>XXXXXX"; on success dir holds its path.
+bool make_temp_dir(const std::string &parent, const std::string &prefix, std::string &dir,
+                   std::string &err);
+
+// Remove a directory tree (no symlinks followed). Errors are ignored: used for cleanup.
+void remove_tree(const std::string &path);
+
+// Remove directories "<parent>/<prefix><pid>-*" owned by us whose process <pid> is gone
+// (left behind by a killed fc-master or fc-slave).
+void remove_stale_dirs(const std::string &parent, const std::string &prefix);
+
+// Write text to path (truncating). Returns false with err on failure.
+bool write_text(const std::string &path, const std::string &text, std::string &err);
+
+// Split text into physical lines on '\n' and '\r' (POV-Ray rewrites progress lines with '\r').
+class LineSplitter {
+public:
+    // Feed raw bytes; complete lines are appended to out (without terminators, empty lines dropped).
+    void feed(const char *data, size_t n, std::vector<std::string> &out);
+    // Return any unterminated rest (at end of stream).
+    std::string rest();
+private:
+    std::string partial_;
+};
+
+// A child process whose stdout and stderr go to one pipe we read.
+struct Child {
+    pid_t pid = -1;
+    int fd = -1;        // read end of the output pipe; -1 after EOF
+    LineSplitter lines;
+};
+
+// Start argv[0] (absolute path) in directory cwd with stdout+stderr on a pipe. The child gets
+// its own process group and is killed (SIGKILL) if the calling thread's process dies.
+// nice_inc > 0 lowers its priority. Returns false with err if fork/pipe fails; exec failure
+// shows up as exit status 127 with a message on the pipe.
+bool start_child(const std::vector<std::string> &argv, const std::string &cwd, int nice_inc,
+                 Child &child, std::string &err);
+
+// Read what is available from child.fd into lines (non-blocking); closes fd at EOF.
+// Returns false at EOF.
+bool read_child(Child &child, std::vector<std::string> &lines);
+
+// Kill the child's process group (SIGKILL) and reap it; safe to call twice.
+void kill_child(Child &child);
+
+// Wait up to timeout seconds for the child to exit; returns true and its wait status on exit.
+bool wait_child(Child &child, double timeout, int &status);
+
+// Describe a wait status: "exit status 1", "killed by signal 9 (Killed)".
+std::string describe_status(int status);
+
+// Trim spaces at both ends.
+std::string trim(const std::string &s);
+bool starts_with(const std::string &s, const std::string &prefix);
+
+} // namespace fc
