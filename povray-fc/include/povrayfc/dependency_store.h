@@ -1,14 +1,13 @@
 // DependencyStore: per-pixel lists of the voxels a pixel's rays touched, compactly encoded.
 //
 // Layout (chosen by measurement, see povrayfc_bench and README.md): one pointer per pixel
-// to its own heap block [varint payload-bytes][LEB128 varints: first voxel id, then
-// (id - previous id - 1) for the rest, ids sorted ascending]. Sorted ids of rays through a
-// grid are dense, so most gaps fit in one byte. Measured (64^3 grid, 1920x1080, camera +
-// shadow + reflection rays): 1.25 bytes per voxel entry for the payload; 64 entries/pixel
-// take 83 B/pixel (payload 80 + pointer 8, before ~16 B/pixel malloc overhead, 215 MB in
-// all with it), 165 entries/pixel 208 B/pixel (~475 MB): far under 4 GiB. DirtyPixels over
-// 1920x1080 with nothing dirty in view takes ~0.2-0.45 s (it decodes every entry); see
-// README.md for the figures.
+// to its own heap block holding the pixel's voxel ids sorted ascending, as gaps between
+// consecutive ids in 1 or 2 bytes with a 1-bit-per-entry length stream (see voxel_list.h).
+// Measured with povrayfc_bench (64^3 grid, 1920x1080, synthetic camera/shadow/mirror rays):
+//   ~80 entries/pixel:  1.67 B/entry (headers included), 141 B/pixel, 293 MB (309 MB heap)
+//   ~150 entries/pixel: 1.50 B/entry, 235 B/pixel, 488 MB (520 MB heap): far under 4 GiB.
+// DirtyPixels over 1920x1080 decodes every entry of every clean pixel: ~1.2-2 ns/entry,
+// 0.2-0.37 s for ~150 entries/pixel; ~2 ms when nothing changed (no decoding).
 //
 // Why a block per pixel rather than shared arenas: Commit() from several render threads
 // then needs no lock at all (each thread writes only its own pixels' slots; malloc is
