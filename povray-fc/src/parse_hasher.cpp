@@ -198,6 +198,8 @@ void SignatureBuilder::EndItem(ParseItemClass itemClass, std::uint64_t hash, boo
     current_.itemClass = itemClass;
     current_.hash = hash;
     current_.addedLights = addedLights;
+    // Whatever added to the scene's light sources changes the lighting of everything.
+    if (addedLights || (itemClass == ParseItemClass::kObject && current_.isLight)) MixLights(hash);
     switch (itemClass) {
         case ParseItemClass::kDiscard:
             break;
@@ -208,7 +210,6 @@ void SignatureBuilder::EndItem(ParseItemClass itemClass, std::uint64_t hash, boo
             MixGlobal(hash);
             break;
         case ParseItemClass::kObject:
-            if (addedLights || current_.isLight) MixLights(hash);
             if (!current_.hasObject) {
                 // An object item without an object: nothing to place, so let any change
                 // of it change the whole frame.

@@ -1,0 +1,89 @@
+"""Frame coherence re-renders only what changed and changes no pixel.
+
+Every scene in scenes/fc-tests/ is a case that could fool fc. Each is rendered as a
+short animation with fc off, and with fc on at one and two render threads; every
+frame must have exactly the same pixels. A scene whose first line says `speedup`
+must also trace fewer rays with fc on. The first line may also carry POV-Ray
+options for that scene (`// fc-test: speedup +A0.1 +AM2`).
+"""
+import csv
+import subprocess
+from pathlib import Path
+
+import pytest
+
+from fcutil import POVRAY_FC, SCENES, assert_same_pixels
+
+FC_SCENES = SCENES / "fc-tests"
+FRAMES = 4
+SIZE = ["+W96", "+H72"]
+
+
+def scene_header(scene):
+    first = scene.read_text().splitlines()[0]
+    assert first.startswith("// fc-test:"), f"{scene}: first line must be '// fc-test: ...'"
+    words = first[len("// fc-test:"):].split()
+    return "speedup" in words, [w for w in words if w.startswith(("+", "-"))]
+
+
+def render_animation(scene, outdir, fc, threads, options):
+    """Renders FRAMES frames; returns the per-frame statistics rows (fc's CSV)."""
+    outdir.mkdir(parents=True, exist_ok=True)
+    stats = outdir / "stats.csv"
+    args = [str(POVRAY_FC), f"+I{scene}", f"+O{outdir}/f", "+FT", "-D", "-P", "-V",
+            f"+KFI1", f"+KFF{FRAMES}", "+KI0", "+KF1", f"+WT{threads}", *SIZE,
+            f"+L{scene.parent}", f"Frame_Coherence={'on' if fc else 'off'}", f"+YS{stats}", *options]
+    done = subprocess.run(args, cwd=outdir, capture_output=True, text=True, timeout=600,
+                          stdin=subprocess.DEVNULL)
+    assert done.returncode == 0, f"{' '.join(args)}\n{done.stderr[-3000:]}"
+    with open(stats, newline="") as f:
+        rows = list(csv.DictReader(f))
+    assert [int(r["frame"]) for r in rows] == list(range(1, FRAMES + 1))
+    return rows
+
+
+SCENE_FILES = sorted(FC_SCENES.glob("*.pov"))
+
+
+@pytest.mark.parametrize("scene", SCENE_FILES, ids=[s.stem for s in SCENE_FILES])
+def test_fc_frames_equal_full_renders(scene, tmp_path):
+    speedup, options = scene_header(scene)
+    full = render_animation(scene, tmp_path / "off", False, 1, options)
+    for threads in (1, 2):
+        coherent = render_animation(scene, tmp_path / f"on-wt{threads}", True, threads, options)
+        for n in range(1, FRAMES + 1):
+            assert_same_pixels(tmp_path / "off" / f"f{n}.tga", tmp_path / f"on-wt{threads}" / f"f{n}.tga")
+    if speedup:
+        # Frames after the first reuse pixels, so fc traces fewer rays than full renders.
+        rays_full = sum(int(r["rays"]) for r in full[1:])
+        rays_fc = sum(int(r["rays"]) for r in coherent[1:])
+        assert rays_fc < rays_full, f"fc traced {rays_fc} rays, full renders {rays_full}"
+        assert sum(int(r["reused"]) for r in coherent) > 0
+
+
+def test_radiosity_frames_render_in_full_and_say_why(tmp_path):
+    rows = render_animation(FC_SCENES / "radiosity.pov", tmp_path, True, 1, ["+WT1"])
+    for row in rows:
+        assert row["coherent"] == "0" and "radiosity" in row["full_reason"]
+        assert int(row["traced"]) == int(row["pixels"])
+
+
+def test_moving_light_renders_full_frames(tmp_path):
+    rows = render_animation(FC_SCENES / "moving_light.pov", tmp_path, True, 1, [])
+    for row in rows[1:]:
+        assert "light" in row["full_reason"] and row["reused"] == "0"
+
+
+def test_camera_cut_starts_a_new_sequence(tmp_path):
+    rows = render_animation(FC_SCENES / "camera_cut.pov", tmp_path, True, 1, [])
+    reasons = [row["full_reason"] for row in rows]
+    # Clock 0, 1/3 share a camera; 2/3 cuts; 1 shares the new one.
+    assert reasons[0] and not reasons[1] and "camera" in reasons[2] and not reasons[3]
+
+
+def test_stats_file_names_the_option_when_unwritable(tmp_path):
+    scene = FC_SCENES / "fog.pov"
+    args = [str(POVRAY_FC), f"+I{scene}", f"+O{tmp_path}/f", "+FT", "-D", "-P", "-V", *SIZE,
+            f"+L{FC_SCENES}", "Frame_Coherence=on", "+YS/nonexistent-dir/stats.csv"]
+    done = subprocess.run(args, cwd=tmp_path, capture_output=True, text=True, timeout=120)
+    assert "Frame_Coherence_Stats" in done.stderr and "/nonexistent-dir/stats.csv" in done.stderr
