@@ -26,6 +26,14 @@ Box GridBounds(const SceneSignature &signature) {
     return bounds;
 }
 
+// Room to move: objects that leave the grid force a full frame and a new grid, so the
+// grid reaches a quarter of the scene's extent beyond it on every side.
+Box WithMargin(const Box &bounds) {
+    const Vec3 e = bounds.Extent();
+    const double m = 0.25 * std::max({e.x, e.y, e.z});
+    return Box{bounds.lo - Vec3{m, m, m}, bounds.hi + Vec3{m, m, m}};
+}
+
 VoxelGrid MakeGrid(const Box &bounds, int longestAxisResolution) {
     if (longestAxisResolution <= 0) return VoxelGrid::Automatic(bounds, kAutomaticVoxels);
     const Vec3 extent = bounds.Extent();
@@ -71,7 +79,10 @@ void FrameCoherence::Reset() {
 }
 
 void FrameCoherence::StartSequence(const FrameSetup &setup, const SceneSignature &signature) {
-    seq_ = std::make_unique<Sequence>(setup, signature, MakeGrid(GridBounds(signature), setup.gridResolution));
+    Box bounds = WithMargin(GridBounds(signature));
+    // An object left the grid: the new one also spans the old, where it came from.
+    if (seq_) bounds = Union(bounds, seq_->grid.Bounds());
+    seq_ = std::make_unique<Sequence>(setup, signature, MakeGrid(bounds, setup.gridResolution));
 }
 
 void FrameCoherence::MarkAllDirty() {
