@@ -572,6 +572,8 @@ void Master::send_job(SlaveInfo &s, int id)
     j.step = scene_.digits > 0 ? scene_.frame_step : 1;
     j.threads = threads_for(s);
     int r = send_msg(s.tid, FC_JOB, j);
+    debug_log("FC_JOB unit %d tile %d frames %d..%d to t%x", id, u.tile, j.first, j.last,
+              unsigned(s.tid));
     s.state = SlaveState::Busy;
     s.unit = id;
     s.last_msg = now();
@@ -622,6 +624,8 @@ void Master::dispatch()
             t.unit = a.unit;
             t.last = scene_.frames[size_t(a.new_hi)];
             int r = send_msg(u.slave, FC_TRUNCATE, t);
+            debug_log("FC_TRUNCATE unit %d to frame %d (t%x), t%x waits", a.unit, t.last,
+                      unsigned(u.slave), unsigned(s.tid));
             s.state = SlaveState::Reserved;
             s.unit = a.unit;
             if (r < 0) {
@@ -723,6 +727,7 @@ void Master::on_frame(int src)
     }
     for (int id : cancel) {
         const Unit &v = sched_->unit(id);
+        debug_log("FC_CANCEL unit %d to t%x", id, unsigned(v.slave));
         if (pack_int(id) >= 0)
             send_packed(v.slave, FC_CANCEL);
     }
@@ -746,6 +751,8 @@ void Master::on_done(int src)
     SlaveInfo *s = slave(src);
     if (!unpack(d) || !s)
         return;
+    debug_log("FC_DONE unit %d status %d frames %d from t%x", d.unit, d.status, d.frames,
+              unsigned(src));
     s->last_msg = now();
     const Unit *u = sched_->find(d.unit);
     if (u && u->live && u->slave == src) {
@@ -799,6 +806,8 @@ void Master::on_truncated(int src)
     int accepted = t.last < 0 ? -1 : index_of(t.last);
     int reserved = 0;
     int tail = sched_->truncated(t.unit, accepted, reserved);
+    debug_log("FC_TRUNCATED unit %d at frame %d: tail unit %d for t%x", t.unit, t.last, tail,
+              unsigned(reserved));
     if (tail >= 0 && unit_stats_.count(t.unit))
         unit_stats_[t.unit].last = t.last;
     SlaveInfo *r = slave(reserved);
@@ -1013,6 +1022,7 @@ int Master::loop()
         if (buf > 0) {
             int len = 0, tag = 0, src = 0;
             pvm_bufinfo(buf, &len, &tag, &src);
+            debug_log("recv %s from t%x (%d bytes)", tag_name(tag), unsigned(src), len);
             switch (tag) {
             case FC_HELLO: on_hello(src); break;
             case FC_FRAME: on_frame(src); break;

@@ -184,6 +184,8 @@ void Slave::on_job()
         argv.push_back(strf("+ER%d", j.rect.y1));
     }
     std::string err;
+    debug_log("unit %d: frames %d..%d rect %d,%d-%d,%d", j.unit, j.first, j.last, j.rect.x0,
+              j.rect.y0, j.rect.x1, j.rect.y1);
     if (!start_child(argv, setup_.cwd, setup_.nice, child_, err)) {
         fail(j.unit, -1, err);
         return;
@@ -221,6 +223,7 @@ void Slave::on_truncate()
             stop_after_ = accepted;
         reply.last = stop_after_;
     }
+    debug_log("truncate unit %d to %d: accepted %d", t.unit, t.last, reply.last);
     send_msg(master_, FC_TRUNCATED, reply);
 }
 
@@ -347,6 +350,7 @@ bool Slave::send_frame(int k, int frame, double seconds)
     }
     frames_sent_++;
     rays_total_ += fr.rays;
+    debug_log("sent frame %d of unit %d", frame, job_.unit);
     return true;
 }
 
@@ -354,6 +358,8 @@ void Slave::renderer_exited(int status)
 {
     if (!busy_)
         return;
+    debug_log("renderer of unit %d exited: %s (frame %d, k %d, stop after %d)", job_.unit,
+              describe_status(status).c_str(), cur_frame_, cur_k_, stop_after_);
     if (stopping_) {
         flush_ready(true);
         if (busy_)
@@ -399,6 +405,7 @@ void Slave::stop_unit(int status)
 void Slave::finish_unit(int status)
 {
     kill_child(child_);
+    debug_log("unit %d ends, status %d, %d frames", job_.unit, status, frames_sent_);
     UnitDone d;
     d.unit = job_.unit;
     d.status = status;
@@ -481,6 +488,7 @@ int Slave::run()
                 break;
             int len, tag, src;
             pvm_bufinfo(buf, &len, &tag, &src);
+            debug_log("recv %s from t%x", tag_name(tag), unsigned(src));
             if (src == master_ || tag == FC_MASTEREXIT)
                 last_master_ = now();
             switch (tag) {

@@ -91,6 +91,10 @@ bool wait_child(Child &child, double timeout, int &status);
 // Describe a wait status: "exit status 1", "killed by signal 9 (Killed)".
 std::string describe_status(int status);
 
+// Append one line to the file named by $FC_DEBUG_LOG (if set): a trace of the protocol for
+// diagnosing runs, shared by the master and all slaves of a machine.
+void debug_log(const char *format, ...) __attribute__((format(printf, 1, 2)));
+
 // Trim spaces at both ends.
 std::string trim(const std::string &s);
 bool starts_with(const std::string &s, const std::string &prefix);
