@@ -412,13 +412,35 @@ def test_inexact_effects(tmp_path):
         (f1,) = signatures(tmp_path, HEADER + body + "\n", frames=1)
         assert name in f1.inexact, (name, f1.inexact)
     # and nothing for ordinary scenes: media method 3 without jitter, area light
-    # without jitter, crand 0
-    plain = HEADER + """sphere { 0, 1 hollow pigment { rgbt 1 } interior { media { emission 0.1 } } }
+    # without jitter, crand 0, and effects only declared, not used (textures.inc
+    # declares a finish with crand)
+    plain = HEADER + """#include "textures.inc"
+#declare Grainy = finish { crand 0.3 }
+#declare Old = media { method 1 emission 0.1 }
+#declare Iso = isosurface { function { x*x + y*y + z*z - 1 } evaluate 5, 1.2, 0.95 }
+sphere { 0, 1 hollow pigment { rgbt 1 } interior { media { emission 0.1 } } }
 light_source { <0, 5, 0> rgb 1 area_light x, z, 3, 3 adaptive 1 }
 sphere { 2, 1 finish { crand 0 } }
+sphere { -2, 1 texture { Jade } }
 """
     (f1,) = signatures(tmp_path, plain, frames=1)
     assert f1.inexact == []
+    # used through identifiers, arrays, macros and defaults, they count
+    used = {
+        "crand": "#declare Grainy = finish { crand 0.3 }\n"
+                 "#declare T = texture { pigment { rgb 1 } finish { Grainy } }\n"
+                 "#macro Ball(Tex) sphere { 0, 1 texture { Tex } } #end\nBall(T)",
+        "media method 1": "#declare A = array[1] { media { method 1 emission 0.1 } }\n"
+                          "box { -1, 1 hollow pigment { rgbt 1 } interior { media { A[0] } } }",
+        "isosurface evaluate": "#declare Iso = isosurface { function { x*x + y*y + z*z - 1 } "
+                               "evaluate 5, 1.2, 0.95 }\nunion { object { Iso } sphere { 3, 1 } }",
+        "media jitter": "media { jitter 0.1 scattering { 1, 0.01 } }",
+    }
+    for name, body in used.items():
+        (f1,) = signatures(tmp_path, HEADER + body + "\n", frames=1)
+        assert f1.inexact == [name], (name, f1.inexact)
+    (f1,) = signatures(tmp_path, HEADER + "#default { finish { crand 0.1 } }\nsphere { 0, 1 }\n", frames=1)
+    assert f1.inexact == ["crand"]
 
 
 def test_three_frames_hash_consistently(tmp_path):
@@ -454,3 +476,28 @@ def test_fc_test_scenes_change(tmp_path, scene):
     assert any(a.hashes() != b.hashes() for a, b in zip(frames, frames[1:]))
     for a, b in zip(frames, frames[1:]):
         assert a.camera == b.camera and a.glob == b.glob
+
+
+def test_data_files_count_by_content(tmp_path):
+    """An image rewritten between frames under the same name changes the object that
+    uses it; a font goes into the global hash (fonts are opened once per scene)."""
+    def write_image(last):
+        (tmp_path / "tex.ppm").write_bytes(b"P6\n2 2\n255\n" + bytes([255, 0, 0, 0, 255, 0, 0, 0, 255,
+                                                                        255, 255, last]))
+    scene = HEADER + """box { -1, 1 pigment { image_map { ppm "tex.ppm" } } } // @image
+#declare P = pigment { image_map { ppm "tex.ppm" } }
+sphere { <2, 0, 0>, 1 pigment { P } } // @declared
+sphere { <-2, 0, 0>, 1 pigment { rgb 1 } } // @still
+text { ttf "timrom.ttf" "fc" 0.1, 0 translate <0, 2, 0> } // @text
+"""
+    write_image(255)
+    f1, f2 = signatures(tmp_path, scene)          # same files in both frames: all stable
+    assert f1.hashes() == f2.hashes() and f1.glob == f2.glob
+    write_image(254)
+    (f3,) = signatures(tmp_path, scene, frames=1)
+    for marker, changed in (("@image", True), ("@declared", True), ("@still", False), ("@text", False)):
+        line = line_of(scene, marker)
+        assert (f1.at(line)["hash"] != f3.at(line)["hash"]) == changed, marker
+    assert f1.glob == f3.glob
+    (f4,) = signatures(tmp_path, scene.replace("timrom.ttf", "cyrvetic.ttf"), frames=1)
+    assert f4.glob != f1.glob

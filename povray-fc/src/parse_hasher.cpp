@@ -44,6 +44,25 @@ std::uint64_t UniqueHashValue() {
                                       0x9e3779b97f4a7c15ULL);
 }
 
+unsigned FinishEffects(double crand, bool subsurface) {
+    return (crand > 0 ? kEffectCrand : 0u) | (subsurface ? kEffectSubsurface : 0u);
+}
+
+unsigned MediaEffects(int method, double jitter) {
+    return (method == 1 ? kEffectMediaMethod1 : 0u) | (method == 2 ? kEffectMediaMethod2 : 0u) |
+           (jitter > 0 ? kEffectMediaJitter : 0u);
+}
+
+std::vector<std::string> InexactEffectNames(unsigned effects) {
+    static const char *const names[] = {"crand",        "media method 1", "media method 2",
+                                        "media jitter", "subsurface",     "isosurface evaluate"};
+    std::vector<std::string> result;
+    for (unsigned bit = 0; bit < sizeof names / sizeof names[0]; ++bit)
+        if (effects & (1u << bit)) result.emplace_back(names[bit]);
+    if (effects >> (sizeof names / sizeof names[0])) result.emplace_back("unknown effect");
+    return result;
+}
+
 bool DebugSignaturesEnabled() {
     const char *value = std::getenv("POVRAYFC_DEBUG_SIGNATURES");
     return value != nullptr && value[0] != '\0' && std::strcmp(value, "0") != 0;
@@ -56,7 +75,7 @@ ParseHasher::ParseHasher() { BeginParse(); }
 
 void ParseHasher::BeginParse() {
     scopes_.clear();
-    scopes_.push_back(kScopeSeed);
+    scopes_.push_back(Scope{kScopeSeed, 0});
     slots_.clear();
 }
 
@@ -105,28 +124,69 @@ void ParseHasher::MixUcs2String(const unsigned short *text) {
     MixBytes(text, length * sizeof(unsigned short));
 }
 
-void ParseHasher::PushScope() { scopes_.push_back(kScopeSeed); }
+bool ParseHasher::MixFileContent(const char *path) {
+    std::FILE *file = path != nullptr ? std::fopen(path, "rb") : nullptr;
+    if (file == nullptr) {
+        MixUnique();
+        return false;
+    }
+    std::vector<unsigned char> buffer(1 << 20);
+    std::uint64_t total = 0;
+    bool ok = true;
+    for (;;) {
+        const std::size_t got = std::fread(buffer.data(), 1, buffer.size(), file);
+        if (got > 0) {
+            MixBytes(buffer.data(), got);
+            total += got;
+        }
+        if (got < buffer.size()) {
+            ok = !std::ferror(file);
+            break;
+        }
+    }
+    std::fclose(file);
+    MixWord(total);
+    if (!ok) MixUnique();
+    return ok;
+}
 
-std::uint64_t ParseHasher::PopScope(bool mixIntoParent) {
-    const std::uint64_t hash = Finish(scopes_.back());
+void ParseHasher::PushScope() { scopes_.push_back(Scope{kScopeSeed, 0}); }
+
+std::uint64_t ParseHasher::PopScope(bool mixIntoParent, unsigned *effects) {
+    const Scope popped = scopes_.back();
+    const std::uint64_t hash = Finish(popped.hash);
+    if (effects != nullptr) *effects = popped.effects;
     if (scopes_.size() > 1) scopes_.pop_back();
-    if (mixIntoParent) MixWord(hash);
+    if (mixIntoParent) {
+        MixWord(hash);
+        NoteEffects(popped.effects);
+    }
     return hash;
 }
 
-bool ParseHasher::SlotHash(const void *slot, std::uint64_t &hash) const {
+void ParseHasher::PopScopeIntoSlot(const void *slot) {
+    unsigned effects = 0;
+    const std::uint64_t hash = PopScope(false, &effects);
+    if (slot != nullptr) SetSlotHash(slot, hash, effects);
+}
+
+bool ParseHasher::SlotHash(const void *slot, std::uint64_t &hash, unsigned *effects) const {
     auto found = slots_.find(slot);
     if (found == slots_.end()) return false;
-    hash = found->second;
+    hash = found->second.hash;
+    if (effects != nullptr) *effects = found->second.effects;
     return true;
 }
 
 void ParseHasher::MixSlot(const void *slot) {
     std::uint64_t hash;
-    if (slot != nullptr && SlotHash(slot, hash))
+    unsigned effects = 0;
+    if (slot != nullptr && SlotHash(slot, hash, &effects)) {
         MixWord(hash);
-    else
+        NoteEffects(effects);
+    } else {
         MixUnique();
+    }
 }
 
 void ParseHasher::ForgetSlots(void *const *first, std::size_t count) {
@@ -137,9 +197,9 @@ void ParseHasher::ForgetSlots(void *const *first, std::size_t count) {
 void ParseHasher::CopySlots(void *const *from, void *const *to, std::size_t count) {
     if (from == nullptr || to == nullptr) return;
     for (std::size_t i = 0; i < count; ++i) {
-        std::uint64_t hash;
-        if (SlotHash(&from[i], hash))
-            slots_[&to[i]] = hash;
+        auto found = slots_.find(&from[i]);
+        if (found != slots_.end())
+            slots_[&to[i]] = found->second;
         else
             slots_.erase(&to[i]);
     }
@@ -194,7 +254,9 @@ void SignatureBuilder::SetItemObject(const float lowerLeft[3], const float lengt
     if (current_.infinite) current_.bounds = Box();
 }
 
-void SignatureBuilder::EndItem(ParseItemClass itemClass, std::uint64_t hash, bool addedLights) {
+void SignatureBuilder::EndItem(ParseItemClass itemClass, std::uint64_t hash, bool addedLights,
+                               unsigned effects) {
+    if (itemClass != ParseItemClass::kDiscard) NoteEffects(effects);
     current_.itemClass = itemClass;
     current_.hash = hash;
     current_.addedLights = addedLights;
@@ -234,15 +296,9 @@ void SignatureBuilder::NoteInexact(const char *name) {
     signature_.inexactEffects.emplace_back(name);
 }
 
-void SignatureBuilder::NoteMedia(int method, double jitter) {
-    if (method == 1) NoteInexact("media method 1");
-    if (method == 2) NoteInexact("media method 2");
-    if (jitter > 0) NoteInexact("media jitter");
-}
-
-void SignatureBuilder::NoteFinish(double crand, bool subsurface) {
-    if (crand > 0) NoteInexact("crand");
-    if (subsurface) NoteInexact("subsurface");
+void SignatureBuilder::NoteEffects(unsigned effects) {
+    if (effects == 0) return;
+    for (const std::string &name : InexactEffectNames(effects)) NoteInexact(name.c_str());
 }
 
 void SignatureBuilder::NoteAreaLight(bool areaLight, bool jitter) {

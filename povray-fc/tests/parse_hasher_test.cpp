@@ -2,10 +2,13 @@
 
 #include <cmath>
 #include <cstdint>
+#include <cstdio>
 #include <cstdlib>
 #include <limits>
 #include <set>
 #include <string>
+
+#include <unistd.h>
 
 #include "povrayfc/parse_hasher.h"
 
@@ -418,4 +421,105 @@ TEST(SignatureBuilder, DebugListingNamesItems) {
     quiet.SetItemObject(kLowerLeft, kLengths, false, false);
     quiet.EndItem(ParseItemClass::kObject, 5, false);
     EXPECT_EQ(quiet.DebugListing().find("item 0"), std::string::npos);
+}
+
+TEST(ParseHasher, FileContent) {
+    char path[] = "/tmp/povrayfc-parse-hasher-XXXXXX";
+    const int fd = mkstemp(path);
+    ASSERT_GE(fd, 0);
+    close(fd);
+    auto write = [&](const std::string &content) {
+        std::FILE *f = std::fopen(path, "wb");
+        ASSERT_NE(f, nullptr);
+        std::fwrite(content.data(), 1, content.size(), f);
+        std::fclose(f);
+    };
+    auto hashOf = [&]() {
+        ParseHasher h;
+        h.PushScope();
+        EXPECT_TRUE(h.MixFileContent(path));
+        return h.PopScope(false);
+    };
+    std::string big(3 << 20, 'x');   // more than one read buffer
+    write(big);
+    const std::uint64_t first = hashOf();
+    EXPECT_EQ(first, hashOf());
+    big[(3 << 20) - 1] = 'y';        // the last byte of the last buffer counts
+    write(big);
+    EXPECT_NE(first, hashOf());
+    write("");
+    const std::uint64_t empty = hashOf();
+    EXPECT_NE(empty, first);
+    std::remove(path);
+
+    // A file that cannot be read counts as changed every time.
+    ParseHasher a, b;
+    EXPECT_FALSE(a.MixFileContent("/nonexistent/povrayfc/file.png"));
+    EXPECT_FALSE(b.MixFileContent("/nonexistent/povrayfc/file.png"));
+    EXPECT_NE(a.Peek(), b.Peek());
+    EXPECT_FALSE(a.MixFileContent(nullptr));
+}
+
+TEST(ParseHasher, EffectsTravelWithContent) {
+    using povrayfc::kEffectCrand;
+    using povrayfc::kEffectMediaJitter;
+    ParseHasher h;
+    void *declared = nullptr;
+    void *unused = nullptr;
+
+    // #declare F = finish { crand 0.1 }: the effect goes to F's slot, not further.
+    h.PushScope();                      // a directive
+    h.PushScope();                      // the right-hand side
+    h.NoteEffects(povrayfc::FinishEffects(0.1, false));
+    h.PopScopeIntoSlot(&declared);
+    unsigned effects = 99;
+    h.PopScope(false, &effects);
+    EXPECT_EQ(effects, 0u);             // the directive itself has none
+    EXPECT_EQ(h.Effects(), 0u);
+    h.PushScope();
+    h.NoteEffects(povrayfc::MediaEffects(3, 0.5));
+    h.PopScopeIntoSlot(&unused);
+
+    // An item using F has the effect; one that does not, has none.
+    h.PushScope();
+    h.PushScope();                      // the token's digest scope
+    h.MixSlot(&declared);
+    h.PopScope(true);
+    h.PopScope(false, &effects);
+    EXPECT_EQ(effects, unsigned(kEffectCrand));
+    h.PushScope();
+    h.MixToken(5);
+    h.PopScope(false, &effects);
+    EXPECT_EQ(effects, 0u);
+
+    // Copies keep the effects; scopes nest.
+    void *from[1] = {nullptr};
+    void *to[1] = {nullptr};
+    h.SetSlotHash(&from[0], 1, kEffectMediaJitter);
+    h.CopySlots(from, to, 1);
+    std::uint64_t hash = 0;
+    ASSERT_TRUE(h.SlotHash(&to[0], hash, &effects));
+    EXPECT_EQ(effects, unsigned(kEffectMediaJitter));
+    h.PushScope();
+    h.PushScope();
+    h.MixSlot(&to[0]);
+    h.MixSlot(&declared);
+    h.PopScope(true);
+    h.PopScope(false, &effects);
+    EXPECT_EQ(effects, unsigned(kEffectMediaJitter | kEffectCrand));
+}
+
+TEST(SignatureBuilder, ItemEffectsBecomeNames) {
+    SignatureBuilder b;
+    b.BeginItem("sphere", 1);
+    b.SetItemObject(kLowerLeft, kLengths, false, false);
+    b.EndItem(ParseItemClass::kObject, 1, false,
+              povrayfc::kEffectIsosurfaceEvaluate | povrayfc::kEffectCrand);
+    b.BeginItem("declare", 2);
+    b.EndItem(ParseItemClass::kDiscard, 2, false, povrayfc::kEffectMediaJitter);   // ignored
+    b.MixGlobal(3, povrayfc::kEffectMediaMethod1);
+    const std::vector<std::string> expected = {"crand", "isosurface evaluate", "media method 1"};
+    EXPECT_EQ(b.Signature().inexactEffects, expected);
+    EXPECT_EQ(povrayfc::InexactEffectNames(0), std::vector<std::string>());
+    EXPECT_EQ(povrayfc::InexactEffectNames(1u << 20), std::vector<std::string>{"unknown effect"});
 }

@@ -16,6 +16,10 @@
 //  - a directive (#if, #while, #declare...) is hashed in an isolated scope too: its
 //    effect on an item shows in the tokens that item then reads and in the identifiers
 //    it uses, not in the directive's own tokens.
+// Effects frame coherence cannot reproduce exactly (crand, media method 1 or 2...) are
+// bits that travel with the hashes: a scope collects those of what it parses and of the
+// identifiers it uses, so a finish declared with crand (textures.inc has one) only
+// counts when an item of the scene uses it.
 // A SignatureBuilder sorts the finished items into a SceneSignature.
 //
 // Nothing here knows POV-Ray's types; the hooks translate.
@@ -43,6 +47,22 @@ inline std::uint64_t HashFinalize64(std::uint64_t x) {
     return x;
 }
 
+// Inexact effects the parser sees, as bits (see above).
+enum InexactEffect : unsigned {
+    kEffectCrand = 1u << 0,
+    kEffectMediaMethod1 = 1u << 1,
+    kEffectMediaMethod2 = 1u << 2,
+    kEffectMediaJitter = 1u << 3,
+    kEffectSubsurface = 1u << 4,
+    kEffectIsosurfaceEvaluate = 1u << 5,
+};
+// The effects of a finish (crand > 0, subsurface {}) and of a media (method 1 or 2,
+// jitter > 0).
+unsigned FinishEffects(double crand, bool subsurface);
+unsigned MediaEffects(int method, double jitter);
+// The names SceneSignature::inexactEffects uses for the bits, in bit order.
+std::vector<std::string> InexactEffectNames(unsigned effects);
+
 // A value that no earlier call in this process returned, and that another process
 // draws from an unrelated random start: mixing it makes a hash "changed".
 std::uint64_t UniqueHashValue();
@@ -56,7 +76,7 @@ public:
 
     // --- mixing into the current (innermost) scope; order matters ---
     void MixWord(std::uint64_t word) {
-        std::uint64_t &h = scopes_.back();
+        std::uint64_t &h = scopes_.back().hash;
         h = HashFinalize64(h + word * 0x9e3779b97f4a7c15ULL + 0x632be59bd9b4e019ULL);
     }
     void MixToken(int tokenId) { MixWord(0x746f6b0000000000ULL ^ static_cast<std::uint32_t>(tokenId)); }
@@ -70,21 +90,35 @@ public:
     // A NUL-terminated UCS-2 string, POV-Ray's UCS2 (unsigned short).
     void MixUcs2String(const unsigned short *text);
     void MixUnique() { MixWord(UniqueHashValue()); }
+    // Every byte of the file at `path` (an image, density or font file the parser
+    // reads: its name alone would miss a file rewritten between frames). A file that
+    // cannot be read mixes a unique value. Returns whether it could be read.
+    bool MixFileContent(const char *path);
+
+    // --- inexact effects of the current scope ---
+    void NoteEffects(unsigned effects) { scopes_.back().effects |= effects; }
+    unsigned Effects() const { return scopes_.back().effects; }
 
     // --- scopes ---
     void PushScope();
-    // Ends the innermost scope and returns its hash; with mixIntoParent the hash is
-    // also mixed into the scope around it. The root scope is never popped: popping it
-    // returns its hash and leaves it in place.
-    std::uint64_t PopScope(bool mixIntoParent);
+    // Ends the innermost scope and returns its hash (and, with `effects`, its effects);
+    // with mixIntoParent the hash is also mixed into the scope around it and the
+    // effects go there too. The root scope is never popped: popping it returns its
+    // hash and leaves it in place.
+    std::uint64_t PopScope(bool mixIntoParent, unsigned *effects = nullptr);
+    // Ends the innermost scope and makes it the content of `slot`.
+    void PopScopeIntoSlot(const void *slot);
     // The hash the current scope would return if it were popped now.
-    std::uint64_t Peek() const { return Finish(scopes_.back()); }
+    std::uint64_t Peek() const { return Finish(scopes_.back().hash); }
     std::size_t Depth() const { return scopes_.size(); }  // 1 = only the root
 
-    // --- content hashes of identifier slots ---
-    void SetSlotHash(const void *slot, std::uint64_t hash) { slots_[slot] = hash; }
-    bool SlotHash(const void *slot, std::uint64_t &hash) const;
-    // Mixes the slot's content hash, or a unique value when it has none.
+    // --- content hashes (and effects) of identifier slots ---
+    void SetSlotHash(const void *slot, std::uint64_t hash, unsigned effects = 0) {
+        slots_[slot] = Slot{hash, effects};
+    }
+    bool SlotHash(const void *slot, std::uint64_t &hash, unsigned *effects = nullptr) const;
+    // Mixes the slot's content hash, or a unique value when it has none, and adds the
+    // slot's effects to the current scope.
     void MixSlot(const void *slot);
     void ForgetSlot(const void *slot) { slots_.erase(slot); }
     // The slots &first[0] ... &first[count-1] (an array's element pointers).
@@ -96,8 +130,16 @@ public:
 private:
     static std::uint64_t Finish(std::uint64_t h) { return HashFinalize64(h ^ 0x5bd1e9955bd1e995ULL); }
 
-    std::vector<std::uint64_t> scopes_;
-    std::unordered_map<const void *, std::uint64_t> slots_;
+    struct Scope {
+        std::uint64_t hash;
+        unsigned effects;
+    };
+    struct Slot {
+        std::uint64_t hash;
+        unsigned effects;
+    };
+    std::vector<Scope> scopes_;
+    std::unordered_map<const void *, Slot> slots_;
 };
 
 // What a finished top-level item was, as the parser hook classifies it.
@@ -128,19 +170,26 @@ public:
                        bool isLightSource);
     // addedLights: the item added light sources to the scene's global light list
     // (a light_source, or a union containing one); its hash then goes into `lights`.
-    void EndItem(ParseItemClass itemClass, std::uint64_t hash, bool addedLights);
+    // effects: the inexact effects the item's scope collected (InexactEffect bits).
+    void EndItem(ParseItemClass itemClass, std::uint64_t hash, bool addedLights,
+                 unsigned effects = 0);
 
     // Mix a hash that is not an item into camera / lights / global (e.g. the default{}
     // block reached through a directive, or the final language version).
     void MixCamera(std::uint64_t hash) { MixInto(signature_.camera, hash); }
     void MixLights(std::uint64_t hash) { MixInto(signature_.lights, hash); }
     void MixGlobal(std::uint64_t hash) { MixInto(signature_.global, hash); }
+    void MixGlobal(std::uint64_t hash, unsigned effects) {
+        MixGlobal(hash);
+        NoteEffects(effects);
+    }
 
     // Effects frame coherence cannot reproduce exactly; each name is kept once, in the
     // order first seen.
     void NoteInexact(const char *name);
-    void NoteMedia(int method, double jitter);           // method 1 or 2, jitter > 0
-    void NoteFinish(double crand, bool subsurface);      // crand > 0, subsurface {}
+    void NoteEffects(unsigned effects);                  // InexactEffect bits
+    void NoteMedia(int method, double jitter) { NoteEffects(MediaEffects(method, jitter)); }
+    void NoteFinish(double crand, bool subsurface) { NoteEffects(FinishEffects(crand, subsurface)); }
     void NoteAreaLight(bool areaLight, bool jitter);     // area_light ... jitter
     void NoteRadiosity(bool enabled) { if (enabled) NoteInexact("radiosity"); }
     void NotePhotons(bool enabled) { if (enabled) NoteInexact("photons"); }
