@@ -28,6 +28,9 @@ POV_TREE  := $(BUILD)/povray
 # Our own code: the fc engine library, built with CMake, unit-tested with ctest.
 FC_BUILD  := $(BUILD)/povray-fc
 FC_LIB    := $(FC_BUILD)/libpovrayfc.a
+# What the library itself links (OpenImageIO writes fc's re-traced pixel masks);
+# deferred (=) so it is read after `make deps` has installed OpenImageIO.
+FC_LIB_DEPS = $(shell pkg-config --libs OpenImageIO 2>/dev/null)
 FC_SOURCES := $(shell find $(TOP)/povray-fc -type f \( -name '*.cpp' -o -name '*.h' -o -name 'CMakeLists.txt' \) 2>/dev/null)
 
 PATCHES   := $(TOP)/patches/series $(wildcard $(TOP)/patches/*.patch)
@@ -95,9 +98,9 @@ $(STAMPS)/patched: $(STAMPS)/unpacked $(PATCHES)
 	touch $@
 
 # Flags that, when changed, must re-run configure.
-$(STAMPS)/configure-args: FORCE
+$(STAMPS)/configure-args: FORCE | deps
 	@mkdir -p $(STAMPS)
-	@echo 'g++ via $(CCACHE_PATH) | $(POV_CXXFLAGS) | $(POV_CPPFLAGS) | $(POV_LDFLAGS) | $(FC_LIB) | $(COMPILED_BY)' > $@.new
+	@echo 'g++ via $(CCACHE_PATH) | $(POV_CXXFLAGS) | $(POV_CPPFLAGS) | $(POV_LDFLAGS) | $(FC_LIB) $(FC_LIB_DEPS) | $(COMPILED_BY)' > $@.new
 	@if cmp -s $@.new $@; then rm $@.new; else mv $@.new $@; fi
 
 # Configure once per set of flags. Our patches never touch the build system (our
@@ -111,7 +114,7 @@ $(STAMPS)/configured: $(STAMPS)/unpacked $(STAMPS)/configure-args | $(STAMPS)/pa
 	  CC=gcc CXX=g++ \
 	  COMPILED_BY="$(COMPILED_BY)" \
 	  CXXFLAGS="$(POV_CXXFLAGS)" CPPFLAGS="$(POV_CPPFLAGS)" LDFLAGS="$(POV_LDFLAGS)" \
-	  LIBS="$(FC_LIB)" >$(BUILD)/configure.log 2>&1 \
+	  LIBS="$(FC_LIB) $(FC_LIB_DEPS)" >$(BUILD)/configure.log 2>&1 \
 	  || { echo "make: configure failed, see $(BUILD)/configure.log" >&2; exit 1; }
 	touch $@
 

@@ -10,9 +10,10 @@ import csv
 import subprocess
 from pathlib import Path
 
+import numpy as np
 import pytest
 
-from fcutil import POVRAY_FC, SCENES, assert_same_pixels
+from fcutil import POVRAY_FC, SCENES, assert_same_pixels, read_pixels
 
 FC_SCENES = SCENES / "fc-tests"
 FRAMES = 4
@@ -87,3 +88,22 @@ def test_stats_file_names_the_option_when_unwritable(tmp_path):
             f"+L{FC_SCENES}", "Frame_Coherence=on", "+YS/nonexistent-dir/stats.csv"]
     done = subprocess.run(args, cwd=tmp_path, capture_output=True, text=True, timeout=120)
     assert "Frame_Coherence_Stats" in done.stderr and "/nonexistent-dir/stats.csv" in done.stderr
+
+
+@pytest.mark.parametrize("scene", ["mirror_only", "shadow_only", "aa_method2_jitter", "aa_method1"])
+def test_retraced_mask_covers_every_changed_pixel(scene, tmp_path):
+    _, options = scene_header(FC_SCENES / f"{scene}.pov")
+    full = render_animation(FC_SCENES / f"{scene}.pov", tmp_path / "off", False, 1, options)
+    rows = render_animation(FC_SCENES / f"{scene}.pov", tmp_path / "on", True, 2,
+                            options + [f"+YM{tmp_path / 'on'}"])
+    del full
+    for n in range(1, FRAMES + 1):
+        mask = read_pixels(tmp_path / "on" / f"retraced{n:04d}.png")[:, :, 0] > 0
+        # The mask is what the statistics count.
+        assert int(mask.sum()) == int(rows[n - 1]["traced"])
+        if n > 1:
+            before = read_pixels(tmp_path / "off" / f"f{n - 1}.tga")
+            after = read_pixels(tmp_path / "off" / f"f{n}.tga")
+            changed = np.any(before != after, axis=2)
+            # Invariant: fc re-traced every pixel that truly changed between full renders.
+            assert not np.any(changed & ~mask), f"frame {n}: changed pixels fc did not re-trace"

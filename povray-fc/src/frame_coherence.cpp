@@ -8,6 +8,7 @@
 
 #include "povrayfc/change_set.h"
 #include "povrayfc/ray_recording.h"
+#include "povrayfc/retrace_mask.h"
 
 namespace povrayfc {
 
@@ -124,6 +125,12 @@ void FrameCoherence::BeginFrame(bool enabled, const FrameSetup &setup, const voi
 
     enabled_ = enabled;
     statsFile_ = setup.statsFile;
+    maskDir_ = setup.maskDir;
+    traced_mask_ = maskDir_.empty() ? DirtyMask() : DirtyMask(std::max(1, setup.width), std::max(1, setup.height));
+    maskArea_[0] = setup.left;
+    maskArea_[1] = setup.top;
+    maskArea_[2] = setup.right;
+    maskArea_[3] = setup.bottom;
     SceneSignature signature;
     const bool haveSignature = TakeSceneSignature(sceneKey, signature) && signature.complete;
     if (!enabled) {
@@ -236,6 +243,7 @@ void FrameCoherence::StopRecording() { StopRecordingRays(); }
 void FrameCoherence::CommitPixel(int x, int y) {
     StopRecordingRays();
     seq_->dependencies.Commit(x, y, tls.recorder);
+    if (!maskDir_.empty()) traced_mask_.Set(x, y);
 }
 
 void FrameCoherence::CommitBlock(int left, int top, int right, int bottom) {
@@ -245,6 +253,9 @@ void FrameCoherence::CommitBlock(int left, int top, int right, int bottom) {
     for (int y = top; y <= bottom; ++y)
         for (int x = left; x <= right; ++x)
             if (x != left || y != top) seq_->dependencies.Commit(x, y, tls.recorder);
+    if (!maskDir_.empty())
+        for (int y = top; y <= bottom; ++y)
+            for (int x = left; x <= right; ++x) traced_mask_.Set(x, y);
 }
 
 void FrameCoherence::BeginBlockCorners(int left, int top, int right, int bottom) {
@@ -293,6 +304,16 @@ void FrameCoherence::EndFrame(std::uint64_t raysTraced) {
     std::string error;
     if (!statsFile_.empty() && !AppendStatsCsv(statsFile_, current_, error))
         std::fprintf(stderr, "Frame_Coherence_Stats: cannot write %s\n", error.c_str());
+    if (!maskDir_.empty()) {
+        // Without fc every pixel of the render area was traced.
+        if (!active_)
+            for (int y = maskArea_[1]; y <= maskArea_[3]; ++y)
+                for (int x = maskArea_[0]; x <= maskArea_[2]; ++x) traced_mask_.Set(x, y);
+        char name[32];
+        std::snprintf(name, sizeof name, "/retraced%04d.png", current_.frame);
+        if (!WriteRetraceMask(maskDir_ + name, traced_mask_, error))
+            std::fprintf(stderr, "Frame_Coherence_Mask: cannot write %s\n", error.c_str());
+    }
     last_ = current_;
 }
 

@@ -78,7 +78,8 @@ class FrameCoherence {
     void CountTraced(std::uint64_t pixels);
     void CountReused(std::uint64_t pixels);
 
-    // Ends the frame: statistics to the log (stderr) and the CSV file.
+    // Ends the frame: statistics to the log (stderr) and the CSV file, and with a mask
+    // folder set, <folder>/retraced<frame>.png (frame zero-padded to 4 digits).
     void EndFrame(std::uint64_t raysTraced);
 
     // The statistics of the last finished frame (for tests and tools).
@@ -98,9 +99,12 @@ class FrameCoherence {
 
     std::unique_ptr<Sequence> seq_;
     DirtyMask dirty_;
+    DirtyMask traced_mask_;  // pixels traced this frame, when a mask folder is set
     bool enabled_ = false;   // the Frame_Coherence option of this frame
     bool active_ = false;
     std::string statsFile_;
+    std::string maskDir_;
+    int maskArea_[4] = {0, 0, -1, -1};  // render area: left, top, right, bottom
     FrameStats current_, last_;
     std::atomic<std::uint64_t> traced_{0}, reused_{0};
     std::chrono::steady_clock::duration bookkeeping_{};

@@ -26,6 +26,7 @@ struct FrameSetup {
     // Options of fc itself.
     int gridResolution = 0;       // voxels along the longest axis; 0 = automatic
     std::string statsFile;        // per-frame CSV, empty for none
+    std::string maskDir;          // folder for per-frame re-traced pixel masks, empty for none
 
     int AreaWidth() const { return right - left + 1; }
     int AreaHeight() const { return bottom - top + 1; }

@@ -9,6 +9,7 @@ enum
 	kPOVAttrib_FrameCoherence      = 'fcOn',  /* bool: Frame_Coherence, +Y/-Y */
 	kPOVAttrib_FrameCoherenceGrid  = 'fcGr',  /* int: Frame_Coherence_Grid, +YG: voxels on the longest axis, 0 = auto */
 	kPOVAttrib_FrameCoherenceStats = 'fcSt',  /* string: Frame_Coherence_Stats, +YS: per-frame CSV file */
+	kPOVAttrib_FrameCoherenceMask  = 'fcMk',  /* string: Frame_Coherence_Mask, +YM: folder for re-traced pixel masks */
 	kPOVAttrib_FrameCoherenceFrame = 'fcFr'   /* int: the frame number, set per frame by the front end */
 };
 
