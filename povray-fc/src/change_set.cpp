@@ -1,6 +1,7 @@
 // ChangeSet bookkeeping and DirtyVoxels: changed boxes to dirty voxels, or "everything".
 #include "povrayfc/change_set.h"
 
+#include <cmath>
 #include <stdexcept>
 
 namespace povrayfc {
@@ -9,6 +10,18 @@ void ChangeSet::AddBox(const Box &b) {
     if (b.HasNaN()) throw std::invalid_argument("ChangeSet::AddBox: box contains NaN: " + ToString(b));
     if (b.Empty()) return;
     boxes_.push_back(b);
+    hulls_.emplace_back();
+    hasHull_.push_back(false);
+}
+
+void ChangeSet::AddBox(const Box &b, const Capsule &hull) {
+    if (hull.a.HasNaN() || hull.b.HasNaN() || std::isnan(hull.radius))
+        throw std::invalid_argument("ChangeSet::AddBox: capsule contains NaN");
+    const std::size_t before = boxes_.size();
+    AddBox(b);
+    if (boxes_.size() == before) return;
+    hulls_.back() = hull;
+    hasHull_.back() = true;
 }
 
 void ChangeSet::MarkAll(const char *reason) {
@@ -19,6 +32,8 @@ void ChangeSet::MarkAll(const char *reason) {
 
 void ChangeSet::Clear() {
     boxes_.clear();
+    hulls_.clear();
+    hasHull_.clear();
     all_ = false;
     reason_.clear();
 }
@@ -30,7 +45,8 @@ DirtyResult DirtyVoxels(const VoxelGrid &grid, const ChangeSet &changes) {
         r.all = true;
         r.reason = changes.Reason();
     } else {
-        for (const Box &b : changes.Boxes()) {
+        for (std::size_t i = 0; i < changes.Boxes().size(); ++i) {
+            const Box &b = changes.Boxes()[i];
             if (!grid.BoxInside(b)) {
                 // Rays are recorded only inside the grid, so a change outside it may affect
                 // pixels whose rays we never saw there.
@@ -39,7 +55,16 @@ DirtyResult DirtyVoxels(const VoxelGrid &grid, const ChangeSet &changes) {
                            " is not inside the voxel grid " + ToString(grid.Bounds());
                 break;
             }
-            grid.ForEachVoxelOverlapping(b, [&](std::uint32_t v) { r.voxels.Set(v); });
+            if (!changes.HasHull()[i]) {
+                grid.ForEachVoxelOverlapping(b, [&](std::uint32_t v) { r.voxels.Set(v); });
+                continue;
+            }
+            const Capsule &hull = changes.Hulls()[i];
+            grid.ForEachVoxelOverlapping(b, [&](std::uint32_t v) {
+                int ix, iy, iz;
+                grid.Coords(v, ix, iy, iz);
+                if (hull.MayMeet(grid.VoxelBox(ix, iy, iz))) r.voxels.Set(v);
+            });
         }
     }
     if (r.all) r.voxels.SetAll();

@@ -173,12 +173,14 @@ void FrameCoherence::BeginFrame(bool enabled, const FrameSetup &setup, const voi
             }
             anyChange = true;
             if (object.infinite) changes.MarkAll("an unbounded object changed");
+            else if (object.hasCapsule) changes.AddBox(object.bounds, object.capsule);
             else changes.AddBox(object.bounds);
         }
         for (const auto &entry : before)
             for (const ObjectSignature *object : entry.second) {
                 anyChange = true;
                 if (object->infinite) changes.MarkAll("an unbounded object changed");
+                else if (object->hasCapsule) changes.AddBox(object->bounds, object->capsule);
                 else changes.AddBox(object->bounds);
             }
         if (anyChange && effects.photons) changes.MarkAll("photons (the photon map depends on every object)");

@@ -1,6 +1,7 @@
 // ParseHasher and SignatureBuilder: see povrayfc/parse_hasher.h.
 #include "povrayfc/parse_hasher.h"
 
+#include <algorithm>
 #include <atomic>
 #include <chrono>
 #include <cinttypes>
@@ -254,6 +255,19 @@ void SignatureBuilder::SetItemObject(const float lowerLeft[3], const float lengt
     if (current_.infinite) current_.bounds = Box();
 }
 
+void SignatureBuilder::SetItemCapsule(const double a[3], const double b[3], double radius) {
+    Capsule c;
+    c.a = Vec3{a[0], a[1], a[2]};
+    c.b = Vec3{b[0], b[1], b[2]};
+    // Grow like the boxes: POV-Ray's own numbers carry rounding.
+    const double scale = std::max({std::fabs(a[0]), std::fabs(a[1]), std::fabs(a[2]), std::fabs(b[0]),
+                                   std::fabs(b[1]), std::fabs(b[2]), radius});
+    c.radius = radius * (1.0 + kRelativePad) + scale * kRelativePad + kAbsolutePad;
+    if (!c.a.IsFinite() || !c.b.IsFinite() || !std::isfinite(c.radius)) return;
+    current_.hasCapsule = true;
+    current_.capsule = c;
+}
+
 void SignatureBuilder::EndItem(ParseItemClass itemClass, std::uint64_t hash, bool addedLights,
                                unsigned effects) {
     if (itemClass != ParseItemClass::kDiscard) NoteEffects(effects);
@@ -281,6 +295,8 @@ void SignatureBuilder::EndItem(ParseItemClass itemClass, std::uint64_t hash, boo
                 object.hash = hash;
                 object.infinite = current_.infinite;
                 object.bounds = current_.bounds;
+                object.hasCapsule = current_.hasCapsule && !current_.infinite;
+                object.capsule = current_.capsule;
                 signature_.objects.push_back(object);
             }
             break;

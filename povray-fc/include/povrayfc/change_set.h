@@ -21,6 +21,8 @@ class ChangeSet {
     // an infinite box is fine (it makes everything dirty). Throws std::invalid_argument
     // for a box with NaN: a NaN bound is a bug upstream, and guessing would hide it.
     void AddBox(const Box &b);
+    // Something inside both b and the capsule changed (the capsule is a tighter hull).
+    void AddBox(const Box &b, const Capsule &hull);
     // Everything changed. The first reason is kept for logs and the next frame's report.
     // Throws std::invalid_argument for a null reason.
     void MarkAll(const char *reason);
@@ -29,11 +31,16 @@ class ChangeSet {
     bool AllMarked() const { return all_; }
     const std::string &Reason() const { return reason_; }
     const std::vector<Box> &Boxes() const { return boxes_; }
+    // Per box: its capsule hull, if it has one.
+    const std::vector<Capsule> &Hulls() const { return hulls_; }
+    const std::vector<bool> &HasHull() const { return hasHull_; }
     // No change at all: the previous frame can be reused as it is.
     bool Empty() const { return !all_ && boxes_.empty(); }
 
   private:
     std::vector<Box> boxes_;
+    std::vector<Capsule> hulls_;
+    std::vector<bool> hasHull_;
     bool all_ = false;
     std::string reason_;
 };

@@ -74,6 +74,30 @@ struct Box {
     }
 };
 
+// Every point within `radius` of the segment [a, b] (a sphere when a == b): a tight
+// conservative hull of cylinders, cones and spheres, whose bounding boxes are loose.
+struct Capsule {
+    Vec3 a, b;
+    double radius = 0.0;
+
+    // Distance from p to the segment [a, b].
+    double AxisDistance(const Vec3 &p) const {
+        const Vec3 ab = b - a, ap = p - a;
+        const double len2 = ab.x * ab.x + ab.y * ab.y + ab.z * ab.z;
+        double t = len2 > 0.0 ? (ap.x * ab.x + ap.y * ab.y + ap.z * ab.z) / len2 : 0.0;
+        t = t < 0.0 ? 0.0 : (t > 1.0 ? 1.0 : t);
+        const Vec3 d = p - (a + t * ab);
+        return std::sqrt(d.x * d.x + d.y * d.y + d.z * d.z);
+    }
+    // True when the closed box may meet the capsule (conservative: tests the box's
+    // circumscribed sphere against the capsule).
+    bool MayMeet(const Box &box) const {
+        const Vec3 c = 0.5 * (box.lo + box.hi), e = box.hi - box.lo;
+        const double halfDiagonal = 0.5 * std::sqrt(e.x * e.x + e.y * e.y + e.z * e.z);
+        return AxisDistance(c) <= (radius + halfDiagonal) * (1.0 + 1e-9) + 1e-12;
+    }
+};
+
 inline Box Union(const Box &a, const Box &b) {
     Box r = a;
     r.Grow(b);

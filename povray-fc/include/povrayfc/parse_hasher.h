@@ -168,6 +168,9 @@ public:
     // kHugeLength on some axis makes the object infinite too.
     void SetItemObject(const float lowerLeft[3], const float lengths[3], bool unbounded,
                        bool isLightSource);
+    // After SetItemObject, for a sphere, cylinder or cone: every point of the object lies
+    // within `radius` of the world-space segment [a, b].
+    void SetItemCapsule(const double a[3], const double b[3], double radius);
     // addedLights: the item added light sources to the scene's global light list
     // (a light_source, or a union containing one); its hash then goes into `lights`.
     // effects: the inexact effects the item's scope collected (InexactEffect bits).
@@ -218,6 +221,8 @@ private:
         long line = 0;
         bool hasObject = false, infinite = false, isLight = false, addedLights = false;
         Box bounds;
+        bool hasCapsule = false;
+        Capsule capsule;
     };
     static void MixInto(std::uint64_t &target, std::uint64_t hash);
 

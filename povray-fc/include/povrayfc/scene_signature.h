@@ -25,6 +25,10 @@ struct ObjectSignature {
     std::uint64_t hash = 0;
     Box bounds;              // world-space bounding box; ignored when infinite
     bool infinite = false;   // unbounded (plane, poly with no bounds...) or huge
+    // A tighter hull than `bounds` for spheres, cylinders and cones: only voxels it may
+    // meet are dirty when the object changes (a slanted string's box is mostly empty).
+    bool hasCapsule = false;
+    Capsule capsule;
 };
 
 struct SceneSignature {
