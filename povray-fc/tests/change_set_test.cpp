@@ -101,3 +101,47 @@ TEST(ChangeSet, RejectsNaNIgnoresEmpty) {
     EXPECT_TRUE(cs.Empty());
     EXPECT_TRUE(cs.Boxes().empty());
 }
+
+namespace povrayfc {
+namespace {
+
+// A thin slanted capsule: its hull marks every voxel a point of the capsule lies in,
+// and far fewer voxels than its bounding box.
+TEST(ChangeSetCapsule, MarksEveryVoxelTheCapsuleMeetsAndFewerThanItsBox) {
+    VoxelGrid grid(Box{Vec3{0, 0, 0}, Vec3{10, 10, 10}}, 20, 20, 20);
+    Capsule hull;
+    hull.a = Vec3{1.1, 1.3, 2.0};
+    hull.b = Vec3{8.7, 9.2, 7.5};
+    hull.radius = 0.15;
+    Box box{Vec3{1.1 - 0.15, 1.3 - 0.15, 2.0 - 0.15}, Vec3{8.7 + 0.15, 9.2 + 0.15, 7.5 + 0.15}};
+    ChangeSet withHull, boxOnly;
+    withHull.AddBox(box, hull);
+    boxOnly.AddBox(box);
+    const DirtyResult tight = DirtyVoxels(grid, withHull), loose = DirtyVoxels(grid, boxOnly);
+    ASSERT_FALSE(tight.all);
+    // Invariant: points inside the capsule (axis, and offsets up to the radius) are in marked voxels.
+    for (int i = 0; i <= 2000; ++i) {
+        const double t = i / 2000.0;
+        const Vec3 p = hull.a + t * (hull.b - hull.a);
+        for (int k = 0; k < 6; ++k) {
+            const Vec3 off[6] = {{0.15, 0, 0}, {-0.15, 0, 0}, {0, 0.15, 0}, {0, -0.15, 0}, {0, 0, 0.15}, {0, 0, -0.15}};
+            const Vec3 q = p + off[k];
+            const int ix = int(q.x / 0.5), iy = int(q.y / 0.5), iz = int(q.z / 0.5);
+            EXPECT_TRUE(tight.voxels.Test(grid.Index(ix, iy, iz))) << ix << "," << iy << "," << iz;
+        }
+    }
+    // Invariant: the hull is tighter than the box it refines, and within it.
+    EXPECT_LT(tight.voxels.Count() * 4, loose.voxels.Count());
+    for (std::uint32_t v = 0; v < grid.VoxelCount(); ++v)
+        if (tight.voxels.Test(v)) EXPECT_TRUE(loose.voxels.Test(v));
+}
+
+TEST(ChangeSetCapsule, NaNCapsuleIsRejected) {
+    ChangeSet changes;
+    Capsule hull;
+    hull.radius = kNaN;
+    EXPECT_THROW(changes.AddBox(Box{Vec3{0, 0, 0}, Vec3{1, 1, 1}}, hull), std::invalid_argument);
+}
+
+}  // namespace
+}  // namespace povrayfc
