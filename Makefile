@@ -28,9 +28,7 @@ POV_TREE  := $(BUILD)/povray
 # Our own code: the fc engine library, built with CMake, unit-tested with ctest.
 FC_BUILD  := $(BUILD)/povray-fc
 FC_LIB    := $(FC_BUILD)/libpovrayfc.a
-# What the library itself links (OpenImageIO writes fc's re-traced pixel masks);
-# deferred (=) so it is read after `make deps` has installed OpenImageIO.
-FC_LIB_DEPS = $(shell pkg-config --libs OpenImageIO 2>/dev/null)
+FC_MASK_PLUGIN := $(FC_BUILD)/povrayfc-mask.so
 FC_SOURCES := $(shell find $(TOP)/povray-fc -type f \( -name '*.cpp' -o -name '*.h' -o -name 'CMakeLists.txt' \) 2>/dev/null)
 
 PATCHES   := $(TOP)/patches/series $(wildcard $(TOP)/patches/*.patch)
@@ -60,7 +58,7 @@ PYTHON := /usr/bin/python3
 .PHONY: all deps test unit-test integration-test demo clean distclean
 .DELETE_ON_ERROR:
 
-all: $(BIN)/povray-fc coordinator
+all: $(BIN)/povray-fc $(BIN)/povrayfc-mask.so coordinator
 
 # The PVM master and slave (coordinator/): fc-master and fc-slave in $(BIN).
 include $(TOP)/coordinator/coordinator.mk
@@ -100,7 +98,7 @@ $(STAMPS)/patched: $(STAMPS)/unpacked $(PATCHES)
 # Flags that, when changed, must re-run configure.
 $(STAMPS)/configure-args: FORCE | deps
 	@mkdir -p $(STAMPS)
-	@echo 'g++ via $(CCACHE_PATH) | $(POV_CXXFLAGS) | $(POV_CPPFLAGS) | $(POV_LDFLAGS) | $(FC_LIB) $(FC_LIB_DEPS) | $(COMPILED_BY)' > $@.new
+	@echo 'g++ via $(CCACHE_PATH) | $(POV_CXXFLAGS) | $(POV_CPPFLAGS) | $(POV_LDFLAGS) | $(FC_LIB) | $(COMPILED_BY)' > $@.new
 	@if cmp -s $@.new $@; then rm $@.new; else mv $@.new $@; fi
 
 # Configure once per set of flags. Our patches never touch the build system (our
@@ -114,7 +112,7 @@ $(STAMPS)/configured: $(STAMPS)/unpacked $(STAMPS)/configure-args | $(STAMPS)/pa
 	  CC=gcc CXX=g++ \
 	  COMPILED_BY="$(COMPILED_BY)" \
 	  CXXFLAGS="$(POV_CXXFLAGS)" CPPFLAGS="$(POV_CPPFLAGS)" LDFLAGS="$(POV_LDFLAGS)" \
-	  LIBS="$(FC_LIB) $(FC_LIB_DEPS)" >$(BUILD)/configure.log 2>&1 \
+	  LIBS="$(FC_LIB)" >$(BUILD)/configure.log 2>&1 \
 	  || { echo "make: configure failed, see $(BUILD)/configure.log" >&2; exit 1; }
 	touch $@
 
@@ -128,6 +126,11 @@ $(FC_BUILD)/CMakeCache.txt: $(TOP)/povray-fc/CMakeLists.txt | deps
 $(FC_LIB): $(FC_BUILD)/CMakeCache.txt $(FC_SOURCES)
 	cmake --build $(FC_BUILD) -j$(JOBS) --target povrayfc
 	touch $@
+
+# Frame_Coherence_Mask's writer, loaded from beside the binary.
+$(BIN)/povrayfc-mask.so: $(FC_BUILD)/CMakeCache.txt $(FC_SOURCES)
+	cmake --build $(FC_BUILD) -j$(JOBS) --target povrayfc-mask
+	mkdir -p $(BIN) && cp $(FC_MASK_PLUGIN) $@
 
 # --- the binary --------------------------------------------------------------
 
