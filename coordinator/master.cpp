@@ -57,6 +57,8 @@ const char *const kHelp =
     "  --ranges N              initial frame ranges for sequence/hybrid (default: slaves)\n"
     "  --slaves N              slaves per host (default: one per core)\n"
     "  --hostfile FILE         pvmd host file for a private virtual machine\n"
+    "  --pvmd-name NAME        host name of a private pvmd (-nNAME; needed to add hosts\n"
+    "                          when this host's name resolves to a loopback address)\n"
     "  --private               always start a private pvmd, even if one runs\n"
     "  --no-fc                 render without frame coherence\n"
     "  --no-duplicates         idle slaves never duplicate running work (stragglers)\n"
@@ -76,6 +78,7 @@ struct Options {
     int ranges = 0;
     int slaves = 0;             // 0 = one per core
     std::string hostfile;
+    std::string pvmd_name;
     bool force_private = false;
     bool fc = true;
     bool duplicates = true;
@@ -147,7 +150,7 @@ Options parse_options(int argc, char **argv)
         static const std::set<std::string> flags = {"--private", "--no-fc", "--no-duplicates",
                                                     "--quiet"};
         static const std::set<std::string> valued = {
-            "--output", "--division", "--tile", "--ranges", "--slaves", "--hostfile",
+            "--output", "--division", "--tile", "--ranges", "--slaves", "--hostfile", "--pvmd-name",
             "--povray", "--slave", "--timeout", "--nice", "--progress", "--stats"};
         if (flags.count(name)) {
             if (has_value)
@@ -181,6 +184,8 @@ Options parse_options(int argc, char **argv)
                 usage_error("--slaves must be a whole number from 1 to 1024, not '" + value + "'");
         } else if (name == "--hostfile") {
             o.hostfile = value;
+        } else if (name == "--pvmd-name") {
+            o.pvmd_name = value;
         } else if (name == "--povray") {
             o.povray = value;
         } else if (name == "--slave") {
@@ -248,6 +253,7 @@ struct SlaveInfo {
     SlaveState state = SlaveState::Starting;
     int unit = -1;
     double spawned = 0, last_msg = 0, last_ping = 0;
+    double reserved_since = 0;  // Reserved: when FC_TRUNCATE went out
     bool killed = false;        // we asked PVM to kill it
     int frame = 0, px_done = 0, px_total = 0;   // from FC_PROGRESS
 };
@@ -290,7 +296,7 @@ private:
     // Helpers.
     void dispatch();
     void send_job(SlaveInfo &s, int unit);
-    void slave_gone(SlaveInfo &s, const std::string &why);
+    void slave_gone(SlaveInfo &s, const std::string &why, bool respawn);
     void check_timeouts();
     void progress();
     void fatal(const std::string &msg);
@@ -460,7 +466,9 @@ bool Master::prepare_output()
 bool Master::start_vm()
 {
     std::string err;
-    if (!vm_.start(opt_.force_private, opt_.hostfile, std::max(15.0, opt_.timeout / 4), err)) {
+    std::string hostfile = opt_.hostfile.empty() ? "" : absolute(opt_.hostfile);
+    if (!vm_.start(opt_.force_private, hostfile, opt_.pvmd_name, std::max(60.0, opt_.timeout / 2),
+                   err)) {
         fprintf(stderr, "fc-master: %s\n", err.c_str());
         return false;
     }
@@ -590,7 +598,7 @@ void Master::send_job(SlaveInfo &s, int id)
     us.started = now();
     host_stat(s.host).units++;
     if (r < 0)
-        slave_gone(s, "cannot send it work: " + pvm_error(r));
+        slave_gone(s, "cannot send it work: " + pvm_error(r), false);
 }
 
 // Hand work to every idle slave: queued units first, then splits, then duplicates.
@@ -611,6 +619,15 @@ void Master::dispatch()
         sched_->plan(opt_.division, parts);
         planned_ = true;
     }
+    if (sched_->queued() == 0 && sched_->running() == 0 && !sched_->finished()) {
+        // Nothing queued or running, yet frames are missing: a bug; do not hang on it.
+        int n = sched_->repair();
+        if (n > 0) {
+            report_.clear_line();
+            fprintf(stderr, "fc-master: warning: %d piece(s) of work were lost track of and "
+                            "are queued again\n", n);
+        }
+    }
     for (auto &kv : slaves_) {
         SlaveInfo &s = kv.second;
         if (s.state != SlaveState::Idle)
@@ -624,6 +641,7 @@ void Master::dispatch()
             t.unit = a.unit;
             t.last = scene_.frames[size_t(a.new_hi)];
             int r = send_msg(u.slave, FC_TRUNCATE, t);
+            s.reserved_since = now();
             debug_log("FC_TRUNCATE unit %d to frame %d (t%x), t%x waits", a.unit, t.last,
                       unsigned(u.slave), unsigned(s.tid));
             s.state = SlaveState::Reserved;
@@ -659,7 +677,7 @@ void Master::on_hello(int src)
     setup.nice = opt_.nice;
     int r = send_msg(src, FC_SETUP, setup);
     if (r < 0) {
-        slave_gone(*s, "cannot send it the setup: " + pvm_error(r));
+        slave_gone(*s, "cannot send it the setup: " + pvm_error(r), false);
         return;
     }
     // A host whose core count we just learned gets one slave per core.
@@ -762,13 +780,11 @@ void Master::on_done(int src)
         us.last = scene_.frames[size_t(u->hi)];
         us.seconds = d.seconds;
         host_stat(s->host).busy += d.seconds;
-        // A unit that ended "finished" must have delivered every cell it still owned.
-        if (d.status == UNIT_FINISHED && u->next <= u->hi) {
-            fatal(strf("slave t%x on %s reported unit %d finished but frames %d..%d are missing",
-                      unsigned(src), s->host.c_str(), d.unit, scene_.frames[size_t(u->next)],
-                      scene_.frames[size_t(u->hi)]));
-            return;
-        }
+        // A finished unit should have delivered every cell of its range; anything missing
+        // (renderer output lost) is re-queued by unit_ended.
+        for (int i = u->lo; i <= u->hi; i++)
+            if (!sched_->done(u->tile, i))
+                debug_log("unit %d finished without frame %d", d.unit, scene_.frames[size_t(i)]);
         int reserved = sched_->unit_ended(d.unit);
         if (SlaveInfo *r = slave(reserved); r && r->state == SlaveState::Reserved)
             r->state = SlaveState::Idle;
@@ -823,7 +839,7 @@ void Master::on_truncated(int src)
 }
 
 // A slave is gone (exited, killed, its host died): put its work back.
-void Master::slave_gone(SlaveInfo &s, const std::string &why)
+void Master::slave_gone(SlaveInfo &s, const std::string &why, bool respawn)
 {
     if (s.state == SlaveState::Gone)
         return;
@@ -843,9 +859,11 @@ void Master::slave_gone(SlaveInfo &s, const std::string &why)
     }
     fprintf(stderr, "\n");
     s.unit = -1;
-    // Replace it while its host lives (a few times per host).
+    // Replace a slave that exited while its host lives (a few times per host). Not one that
+    // fell silent: its host may be unreachable, and pvm_spawn there blocks until PVM gives
+    // up on the host (minutes).
     auto h = hosts_.find(s.dtid);
-    if (h != hosts_.end() && h->second.alive && h->second.respawns < 3) {
+    if (respawn && h != hosts_.end() && h->second.alive && h->second.respawns < 3) {
         h->second.respawns++;
         spawn_on(h->second, 1);
     }
@@ -858,7 +876,7 @@ void Master::on_task_exit()
     if (!unpack_int(tid))
         return;
     if (SlaveInfo *s = slave(tid))
-        slave_gone(*s, "exited");
+        slave_gone(*s, "exited", true);
 }
 
 void Master::on_host_delete()
@@ -872,7 +890,7 @@ void Master::on_host_delete()
     h->second.alive = false;
     for (auto &kv : slaves_)
         if (kv.second.dtid == dtid)
-            slave_gone(kv.second, "was lost with its host");
+            slave_gone(kv.second, "was lost with its host", false);
 }
 
 void Master::on_host_add()
@@ -910,7 +928,13 @@ void Master::on_host_add()
 
 void Master::check_timeouts()
 {
+    // Messages still waiting mean the master itself was slow (a blocking PVM call): read
+    // them before judging anybody silent.
+    if (pvm_probe(-1, -1) > 0)
+        return;
     double t = now();
+    double split_wait = std::min(10.0, opt_.timeout / 2);
+    bool redispatch = false;
     for (auto &kv : slaves_) {
         SlaveInfo &s = kv.second;
         if (s.state == SlaveState::Gone || s.killed)
@@ -918,18 +942,33 @@ void Master::check_timeouts()
         bool silent = (s.state == SlaveState::Starting || s.state == SlaveState::Busy) &&
                       t - s.last_msg > opt_.timeout;
         if (silent) {
-            // SIGKILL also ends a stopped process; its work is re-queued right away.
+            // Its work is re-queued right away. On this host SIGKILL also ends a stopped
+            // process. A remote one is only abandoned: pvm_sendsig waits for the remote pvmd,
+            // which blocks until PVM declares a crashed host dead (minutes); if it lives, it
+            // exits when the master does (FC_MASTEREXIT).
             s.killed = true;
-            pvm_sendsig(s.tid, SIGKILL);
-            pvm_kill(s.tid);
-            slave_gone(s, strf("was silent for %.0f s and is stopped", t - s.last_msg));
-        } else if (s.state == SlaveState::Idle && t - std::max(s.last_ping, s.last_msg) >
-                                                      std::max(1.0, opt_.timeout / 3)) {
+            if (s.dtid == my_dtid_)
+                pvm_sendsig(s.tid, SIGKILL);
+            slave_gone(s, strf("was silent for %.0f s and is %s", t - s.last_msg,
+                               s.dtid == my_dtid_ ? "stopped" : "abandoned"), false);
+        } else if (s.state == SlaveState::Reserved && t - s.reserved_since > split_wait) {
+            // The busy slave did not answer FC_TRUNCATE: do not wait for it any longer.
+            debug_log("FC_TRUNCATE of unit %d unanswered; t%x is idle again", s.unit,
+                      unsigned(s.tid));
+            sched_->truncate_timed_out(s.unit);
+            s.state = SlaveState::Idle;
+            s.unit = -1;
+            redispatch = true;
+        }
+        if ((s.state == SlaveState::Idle || s.state == SlaveState::Reserved) &&
+            t - std::max(s.last_ping, s.last_msg) > std::max(1.0, opt_.timeout / 3)) {
             s.last_ping = t;
             if (pack_empty() >= 0)
                 send_packed(s.tid, FC_PING);
         }
     }
+    if (redispatch)
+        dispatch();
 }
 
 void Master::progress()
@@ -995,9 +1034,10 @@ void Master::shutdown_slaves()
         }
     }
     for (int tid : waiting) {
-        pvm_sendsig(tid, SIGKILL);
-        pvm_kill(tid);
-        if (SlaveInfo *s = slave(tid))
+        SlaveInfo *s = slave(tid);
+        if (s && s->dtid == my_dtid_)   // remote ones exit on FC_MASTEREXIT (see check_timeouts)
+            pvm_sendsig(tid, SIGKILL);
+        if (s)
             s->state = SlaveState::Gone;
     }
 }

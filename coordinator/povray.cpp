@@ -219,7 +219,9 @@ bool renderer_version(const std::string &renderer, bool &has_fc, std::string &fi
 
 bool parse_rendering_frame(const std::string &line, int &k, int &n)
 {
-    return sscanf(line.c_str(), "Rendering frame %d of %d", &k, &n) == 2;
+    // Anywhere in the line: output of POV-Ray's threads can share a line.
+    const char *p = strstr(line.c_str(), "Rendering frame ");
+    return p && sscanf(p, "Rendering frame %d of %d", &k, &n) == 2;
 }
 
 bool parse_rays(const std::string &line, double &rays)

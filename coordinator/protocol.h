@@ -86,7 +86,8 @@ struct Setup {
     std::vector<std::string> extra;     // options the master adds (frame coherence)
     int width = 0, height = 0;
     int digits = 0;                     // digits of frame numbers in output names; 0 = still
-    int timeout = 0;                    // seconds an idle slave waits for the master
+    int timeout = 0;                    // master's --timeout: heartbeat every min(2, timeout/4) s,
+                                        // idle slave gives up after max(300, 10 x timeout) s
     int nice = 0;                       // nice increment for the renderer
 };
 

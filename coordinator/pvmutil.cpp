@@ -114,8 +114,8 @@ void remove_stale_private_vms()
     remove_stale_dirs("/tmp", kPrivatePrefix);
 }
 
-bool VirtualMachine::start(bool force_private, const std::string &hostfile, double timeout,
-                           std::string &err)
+bool VirtualMachine::start(bool force_private, const std::string &hostfile,
+                           const std::string &name, double timeout, std::string &err)
 {
     pvm_setopt(PvmAutoErr, 0);
     if (!force_private) {
@@ -155,10 +155,11 @@ bool VirtualMachine::start(bool force_private, const std::string &hostfile, doub
             return true;
         }
     }
-    return start_private(hostfile, timeout, err);
+    return start_private(hostfile, name, timeout, err);
 }
 
-bool VirtualMachine::start_private(const std::string &hostfile, double timeout, std::string &err)
+bool VirtualMachine::start_private(const std::string &hostfile, const std::string &name,
+                                   double timeout, std::string &err)
 {
     remove_stale_private_vms();
     if (!make_temp_dir("/tmp", strf("%s%d-", kPrivatePrefix, int(getpid())), tmpdir_, err))
@@ -201,10 +202,16 @@ bool VirtualMachine::start_private(const std::string &hostfile, double timeout, 
             dup2(devnull, 0);
         if (chdir("/") != 0)
             _exit(126);
-        if (hostfile.empty())
-            execl(program.c_str(), program.c_str(), (char *)nullptr);
-        else
-            execl(program.c_str(), program.c_str(), hostfile.c_str(), (char *)nullptr);
+        std::vector<std::string> args = {program};
+        if (!name.empty())
+            args.push_back("-n" + name);
+        if (!hostfile.empty())
+            args.push_back(hostfile);
+        std::vector<char *> av;
+        for (std::string &a : args)
+            av.push_back(&a[0]);
+        av.push_back(nullptr);
+        execv(program.c_str(), av.data());
         dprintf(2, "exec %s: %s\n", program.c_str(), strerror(errno));
         _exit(127);
     }

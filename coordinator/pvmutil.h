@@ -18,9 +18,12 @@ std::string pvm_error(int code);
 class VirtualMachine {
 public:
     // Enrol in the user's running virtual machine, or start a private one (always when
-    // force_private). hostfile (may be empty) is passed to a private pvmd. Sets err and
-    // returns false on failure. On success mytid() is valid.
-    bool start(bool force_private, const std::string &hostfile, double timeout, std::string &err);
+    // force_private). hostfile (may be empty) is passed to a private pvmd, and so is name
+    // (-nNAME: the master host's name, which must not resolve to a loopback address when
+    // other hosts are added). Sets err and returns false on failure. On success mytid() is
+    // valid.
+    bool start(bool force_private, const std::string &hostfile, const std::string &name,
+               double timeout, std::string &err);
 
     // Leave the virtual machine; a private one is halted and its PVM_TMP removed.
     void stop();
@@ -30,7 +33,8 @@ public:
     const std::string &tmpdir() const { return tmpdir_; }
 
 private:
-    bool start_private(const std::string &hostfile, double timeout, std::string &err);
+    bool start_private(const std::string &hostfile, const std::string &name, double timeout,
+                       std::string &err);
 
     bool embedded_ = false;
     int mytid_ = -1;

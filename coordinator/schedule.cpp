@@ -181,7 +181,8 @@ Action Schedule::next_for(int tid, double t, bool allow_duplicates)
     long best_work = 0;
     for (auto &kv : units_) {
         Unit &u = kv.second;
-        if (!u.live || u.slave == 0 || u.truncating || u.cancelling || u.dup_of >= 0 || u.has_dup)
+        if (!u.live || u.slave == 0 || u.truncating || u.cancelling || u.dup_of >= 0 ||
+            u.has_dup || u.no_split)
             continue;
         if (u.remaining() < 2)
             continue;
@@ -274,6 +275,19 @@ int Schedule::truncated(int id, int accepted, int &reserved)
     return add_unit(u.tile, u.hi + 1, old_hi, true);
 }
 
+int Schedule::truncate_timed_out(int id)
+{
+    auto it = units_.find(id);
+    if (it == units_.end() || !it->second.truncating)
+        return 0;
+    Unit &u = it->second;
+    int reserved = u.reserved;
+    u.truncating = false;
+    u.reserved = 0;
+    u.no_split = true;
+    return reserved;
+}
+
 bool Schedule::covered(int tile, int index, int except) const
 {
     for (auto &kv : units_) {
@@ -285,6 +299,25 @@ bool Schedule::covered(int tile, int index, int except) const
             return true;
     }
     return false;
+}
+
+int Schedule::repair()
+{
+    int added = 0;
+    for (int t = 0; t < tiles(); t++) {
+        int run_lo = -1;
+        for (int i = 0; i <= nframes_; i++) {
+            bool missing = i < nframes_ && !done(t, i) && !covered(t, i, -1);
+            if (missing && run_lo < 0)
+                run_lo = i;
+            if (!missing && run_lo >= 0) {
+                add_unit(t, run_lo, i - 1, false);
+                added++;
+                run_lo = -1;
+            }
+        }
+    }
+    return added;
 }
 
 int Schedule::unit_ended(int id)
@@ -317,7 +350,8 @@ int Schedule::unit_ended(int id)
     }
     // Re-queue uncovered missing cells as consecutive runs, oldest work first.
     std::vector<std::pair<int, int>> runs;
-    for (int i = std::max(u.lo, u.next); i <= u.hi; i++) {
+    // From lo, not next: a cell the unit skipped (lost output) is re-queued too.
+    for (int i = u.lo; i <= u.hi; i++) {
         if (done(u.tile, i) || covered(u.tile, i, id))
             continue;
         if (!runs.empty() && runs.back().second == i - 1)

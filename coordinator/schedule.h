@@ -43,6 +43,7 @@ struct Unit {
     bool truncating = false;    // FC_TRUNCATE sent, FC_TRUNCATED not yet received
     int reserved = 0;           // idle slave waiting for this unit's tail
     bool cancelling = false;    // FC_CANCEL sent
+    bool no_split = false;      // its slave left an FC_TRUNCATE unanswered: only duplicate it
     bool live = true;           // queued or running
     double started = 0;         // when it was handed out
     int remaining() const { return hi - next + 1; }
@@ -87,10 +88,19 @@ public:
     // waiting for it (0 if none); the caller assigns the tail with assign() or leaves it queued.
     int truncated(int unit, int accepted, int &reserved);
 
+    // The unit's slave did not answer FC_TRUNCATE in time: forget the request (a late answer
+    // is ignored, its tail then comes back through unit_ended) and never split it again.
+    // Returns the slave that was reserved for the tail (0 if none).
+    int truncate_timed_out(int unit);
+
     // The unit ended (finished, cancelled, truncated, or its slave died). Its cells that are
     // neither done nor covered by another live unit go back to the front of the queue.
     // Returns a slave that was reserved for this unit's tail (0 if none): it is idle again.
     int unit_ended(int unit);
+
+    // Queue every missing cell that no live unit covers (restores the invariant; returns the
+    // number of units added, 0 when it held).
+    int repair();
 
     // Hand queued unit to slave tid.
     void assign(int unit, int tid, double t);

@@ -127,6 +127,38 @@ static void test_dead_slave_requeues()
     CHECK(covered_everywhere(s));
 }
 
+static void test_skipped_cell_requeued()
+{
+    Schedule s({Rect{0, 0, 4, 4}}, 5);
+    s.plan(Division::Sequence, 1);
+    Action a = s.next_for(100, 0, true);
+    std::vector<int> cancel;
+    for (int i : {0, 1, 3, 4})
+        s.frame_arrived(a.unit, i, cancel);
+    s.unit_ended(a.unit);
+    // A cell the unit never delivered (lost renderer output) is queued again.
+    CHECK(s.queued() == 1);
+    Action b = s.next_for(100, 1, true);
+    CHECK(b.kind == Action::Run && s.unit(b.unit).lo == 2 && s.unit(b.unit).hi == 2);
+}
+
+static void test_repair()
+{
+    Schedule s({Rect{0, 0, 4, 4}, Rect{4, 0, 8, 4}}, 4);
+    s.plan(Division::Frame, 1);
+    CHECK(s.repair() == 0);     // the plan covers everything
+    s.mark_done(0, 0);
+    std::vector<int> ids;
+    for (auto &kv : s.units())
+        ids.push_back(kv.first);
+    for (int id : ids) {
+        s.unit(id).live = false;    // simulate lost bookkeeping
+    }
+    // Every missing cell is covered again: tile 0 frames 1..3, tile 1 frames 0..3.
+    CHECK(s.repair() == 2);
+    CHECK(covered_everywhere(s));
+}
+
 static void test_straggler_duplicate()
 {
     Schedule s({Rect{0, 0, 4, 4}}, 1);
@@ -224,6 +256,8 @@ int main()
     test_split_and_truncate();
     test_dead_slave_requeues();
     test_straggler_duplicate();
+    test_skipped_cell_requeued();
+    test_repair();
     for (unsigned seed = 1; seed <= 50; seed++) {
         test_simulation(Division::Sequence, seed);
         test_simulation(Division::Frame, seed);

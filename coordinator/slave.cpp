@@ -55,6 +55,7 @@ private:
     // Renderer output and lifetime.
     void on_line(const std::string &line);
     void frame_written();
+    void advance_to(int k);
     bool send_frame(int k, int frame, double seconds);
     void flush_ready(bool force);
     void check_stopping();
@@ -244,20 +245,8 @@ void Slave::on_line(const std::string &line)
     int k, n;
     double rays;
     if (parse_rendering_frame(line, k, n)) {
-        if (k <= cur_k_ || stopping_)
-            return;     // POV-Ray may print the first one twice
-        // Frame k-1's file was written before this line was printed.
-        if (cur_k_ > 0)
-            frame_written();
-        cur_k_ = k;
-        cur_frame_ = job_.first + (k - 1) * job_.step;
-        cur_done_ = false;
-        frame_start_ = now();
-        px_done_ = 0;
-        if (cur_frame_ > stop_after_) {
-            stopping_ = true;
-            stop_deadline_ = now() + 1.0;
-        }
+        if (k > cur_k_ && !stopping_)
+            advance_to(k);
     } else if (parse_rays(line, rays)) {
         rays_.push_back(rays);
     } else if (parse_aa(line, k)) {
@@ -276,6 +265,29 @@ void Slave::frame_written()
     cur_done_ = true;
     double t = now();
     ready_.push_back(Ready{cur_k_, cur_frame_, t - frame_start_, t});
+}
+
+// POV-Ray announced frame k of the unit (1-based): every frame before it is on disk. Queue
+// them all (POV-Ray's console can drop an announcement when frames are short) and make k
+// the frame being rendered; past the truncation point, start stopping instead.
+void Slave::advance_to(int k)
+{
+    if (k > cur_k_ + 1 && cur_k_ > 0)
+        debug_log("unit %d: announcements %d..%d missed", job_.unit, cur_k_ + 1, k - 1);
+    while (cur_k_ < k) {
+        if (cur_k_ > 0)
+            frame_written();
+        cur_k_++;
+        cur_frame_ = job_.first + (cur_k_ - 1) * job_.step;
+        cur_done_ = false;
+        frame_start_ = now();
+        px_done_ = 0;
+        if (cur_frame_ > stop_after_) {
+            stopping_ = true;
+            stop_deadline_ = now() + 1.0;
+            return;
+        }
+    }
 }
 
 // Send ready frames whose statistics arrived (or waited long enough, or force).
@@ -367,20 +379,15 @@ void Slave::renderer_exited(int status)
         return;
     }
     if (WIFEXITED(status) && WEXITSTATUS(status) == 0) {
-        int expected = setup_.digits > 0 ? stop_after_ : job_.first;
-        if (setup_.digits > 0) {
-            // Each frame of the range must have been announced; the last one is done now.
-            int last = job_.first + ((stop_after_ - job_.first) / job_.step) * job_.step;
-            expected = last;
-        }
-        if (cur_frame_ != expected || (setup_.digits > 0 && cur_k_ == 0)) {
+        // Every frame up to the last one of the (possibly truncated) range is on disk.
+        int last_k = (stop_after_ - job_.first) / job_.step + 1;
+        if (cur_k_ > last_k) {
             fail(cur_frame_, status,
-                 strf("the renderer ended after frame %d, expected frame %d\n%s", cur_frame_,
-                     expected, error_excerpt({tail_.begin(), tail_.end()}).c_str()));
+                 strf("the renderer announced frame %d of %d\n%s", cur_k_, last_k,
+                      error_excerpt({tail_.begin(), tail_.end()}).c_str()));
             return;
         }
-        if (setup_.digits == 0)
-            cur_k_ = 1;     // a still image: one frame, no "Rendering frame" line
+        advance_to(last_k);
         frame_written();
         flush_ready(true);
         if (busy_)
@@ -506,7 +513,10 @@ int Slave::run()
         flush_ready(false);
         check_stopping();
         heartbeat();
-        if (!busy_ && setup_.timeout > 0 && now() - last_master_ > setup_.timeout)
+        // The master pings idle slaves every timeout/3 s; it can still be held up for
+        // minutes inside PVM calls when a host crashes, so give up only much later.
+        double idle_limit = std::max(300.0, 10.0 * setup_.timeout);
+        if (!busy_ && setup_.timeout > 0 && now() - last_master_ > idle_limit)
             return 4;   // nothing heard from the master for too long
         if (!busy_ && !have_setup_ && now() - last_master_ > 120)
             return 4;

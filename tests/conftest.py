@@ -1,0 +1,221 @@
+"""Shared pytest fixtures. The coordinator_* helpers serve tests/test_coordinator*.py.
+
+The coordinator tests run the real fc-master, which starts a real private pvmd and real
+fc-slave tasks. Every process of one run carries a marker in its environment (inherited
+master -> pvmd -> slaves -> renderer), so a test can prove that nothing is left behind and can
+kill exactly its own processes, by pid, even when it fails.
+"""
+import json
+import os
+import signal
+import subprocess
+import time
+import uuid
+
+import numpy as np
+import pytest
+
+TOP = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+BIN = os.path.join(TOP, "build", "bin")
+COORDINATOR_SCENES = os.path.join(TOP, "scenes", "coordinator-test")
+FC_MASTER = os.path.join(BIN, "fc-master")
+FC_SLAVE = os.path.join(BIN, "fc-slave")
+MARK_VAR = "FC_TEST_MARK"
+
+
+def coordinator_renderer():
+    """The renderer the coordinator tests use: $FC_TEST_POVRAY, our build, else Debian's."""
+    env = os.environ.get("FC_TEST_POVRAY")
+    if env:
+        return env
+    ours = os.path.join(BIN, "povray-fc")
+    return ours if os.access(ours, os.X_OK) else "/usr/bin/povray"
+
+
+def coordinator_marked_pids(mark):
+    """Pids of live processes whose environment carries FC_TEST_MARK=mark."""
+    needle = ("%s=%s" % (MARK_VAR, mark)).encode()
+    pids = []
+    for name in os.listdir("/proc"):
+        if not name.isdigit() or int(name) == os.getpid():
+            continue
+        try:
+            with open("/proc/%s/environ" % name, "rb") as f:
+                env = f.read().split(b"\0")
+            with open("/proc/%s/stat" % name) as f:
+                state = f.read().rsplit(")", 1)[1].split()[0]
+        except OSError:
+            continue
+        if needle in env and state != "Z":
+            pids.append(int(name))
+    return pids
+
+
+def coordinator_cmdline(pid):
+    try:
+        with open("/proc/%d/cmdline" % pid, "rb") as f:
+            return f.read().replace(b"\0", b" ").decode(errors="replace")
+    except OSError:
+        return ""
+
+
+def load_rgb(path):
+    """8-bit RGB pixels of an image file as a numpy array (height, width, 3)."""
+    import OpenImageIO as oiio
+    inp = oiio.ImageInput.open(path)
+    assert inp, "cannot open %s: %s" % (path, oiio.geterror())
+    pixels = inp.read_image(0, 0, 0, 3, "uint8")
+    inp.close()
+    return np.asarray(pixels)
+
+
+class CoordinatorRun:
+    """Runs fc-master with a private PVM_TMP and a process marker; cleans up after itself."""
+
+    def __init__(self, tmp_path):
+        self.tmp_path = tmp_path
+        self.mark = uuid.uuid4().hex
+        self.pvm_tmp = tmp_path / "pvm-tmp"
+        self.pvm_tmp.mkdir(exist_ok=True)
+        # Protocol trace of the master and its slaves, shown when a run hangs.
+        self.debug_log = tmp_path / "fc-debug.log"
+        self.procs = []
+
+    def env(self, extra=None):
+        env = dict(os.environ)
+        env[MARK_VAR] = self.mark
+        # A private, empty PVM_TMP: the master never joins a virtual machine it does not own
+        # unless a test starts one there on purpose.
+        env["PVM_TMP"] = str(self.pvm_tmp)
+        env.pop("PVM_EXPORT", None)
+        env["FC_DEBUG_LOG"] = str(self.debug_log)
+        if extra:
+            env.update(extra)
+        return env
+
+    def argv(self, args, renderer=True):
+        argv = [FC_MASTER]
+        if renderer:
+            argv += ["--povray", coordinator_renderer()]
+        return argv + list(args)
+
+    def run(self, args, cwd=COORDINATOR_SCENES, timeout=90, renderer=True, env=None):
+        """Run fc-master to completion; returns CompletedProcess (text output). A run that
+        does not end in time is interrupted and reported with its protocol trace."""
+        argv = self.argv(args, renderer)
+        p = subprocess.Popen(argv, cwd=cwd, env=self.env(env), stdout=subprocess.PIPE,
+                             stderr=subprocess.PIPE, text=True)
+        self.procs.append(p)
+        try:
+            out, err = p.communicate(timeout=timeout)
+        except subprocess.TimeoutExpired:
+            procs = [coordinator_cmdline(pid) for pid in self.pids()]
+            p.send_signal(signal.SIGINT)
+            try:
+                out, err = p.communicate(timeout=15)
+            except subprocess.TimeoutExpired:
+                p.kill()
+                out, err = p.communicate()
+            raise AssertionError(
+                "fc-master did not finish within %d s: %s\n--- stderr:\n%s\n--- processes:\n%s"
+                "\n--- protocol trace (last lines):\n%s"
+                % (timeout, " ".join(argv), err[-4000:], "\n".join(procs), self.trace(80)))
+        return subprocess.CompletedProcess(argv, p.returncode, out, err)
+
+    def trace(self, lines=60):
+        """The last lines of the protocol trace (FC_DEBUG_LOG)."""
+        try:
+            with open(self.debug_log) as f:
+                return "".join(f.readlines()[-lines:])
+        except OSError:
+            return "(no trace)"
+
+    def start(self, args, cwd=COORDINATOR_SCENES, renderer=True, env=None):
+        """Start fc-master in the background; returns the Popen."""
+        p = subprocess.Popen(self.argv(args, renderer), cwd=cwd, env=self.env(env),
+                             stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
+        self.procs.append(p)
+        return p
+
+    def pids(self):
+        return coordinator_marked_pids(self.mark)
+
+    def wait_no_processes(self, timeout=10):
+        """Wait until no marked process is left; returns the command lines of survivors."""
+        deadline = time.time() + timeout
+        while time.time() < deadline:
+            pids = self.pids()
+            if not pids:
+                return []
+            time.sleep(0.1)
+        return [coordinator_cmdline(p) or str(p) for p in self.pids()]
+
+    def cleanup(self):
+        for p in self.procs:
+            if p.poll() is None:
+                p.kill()
+            try:
+                p.communicate(timeout=5)
+            except Exception:
+                pass
+        for _ in range(3):
+            pids = self.pids()
+            if not pids:
+                break
+            for pid in pids:
+                try:
+                    os.kill(pid, signal.SIGKILL)
+                except OSError:
+                    pass
+            time.sleep(0.2)
+
+
+@pytest.fixture
+def coordinator(tmp_path):
+    """A CoordinatorRun for one test; kills whatever the test left behind, even on failure."""
+    run = CoordinatorRun(tmp_path)
+    yield run
+    run.cleanup()
+
+
+@pytest.fixture(scope="session")
+def coordinator_build():
+    """Build fc-master and fc-slave (fast when up to date)."""
+    r = subprocess.run(["make", "-C", os.path.join(TOP, "coordinator"), "BIN=" + BIN],
+                       capture_output=True, text=True)
+    assert r.returncode == 0, "building the coordinator failed:\n" + r.stdout + r.stderr
+    assert os.access(FC_MASTER, os.X_OK) and os.access(FC_SLAVE, os.X_OK)
+    return BIN
+
+
+class CoordinatorReferences:
+    """Single-process renders of the same frames, rendered once per session and reused."""
+
+    def __init__(self, root):
+        self.root = root
+        self.cache = {}
+
+    def frames(self, scene, options):
+        """Render `scene` with `options` in one POV-Ray process; returns {file name: pixels}."""
+        key = (scene, tuple(options))
+        if key not in self.cache:
+            out = self.root / ("ref%d" % len(self.cache))
+            out.mkdir()
+            stem = os.path.splitext(os.path.basename(scene))[0]
+            argv = [coordinator_renderer(), scene, "-D", "+FT", "-UA",
+                    "+O%s/%s" % (out, stem)] + list(options)
+            r = subprocess.run(argv, cwd=COORDINATOR_SCENES, capture_output=True, text=True,
+                               timeout=300)
+            assert r.returncode == 0, "reference render failed:\n" + r.stderr[-3000:]
+            self.cache[key] = {f: load_rgb(str(out / f)) for f in sorted(os.listdir(out))}
+        return self.cache[key]
+
+
+@pytest.fixture(scope="session")
+def coordinator_references(tmp_path_factory):
+    return CoordinatorReferences(tmp_path_factory.mktemp("coordinator-references"))
+
+
+def coordinator_stats(path):
+    with open(path) as f:
+        return json.load(f)

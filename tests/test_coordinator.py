@@ -1,0 +1,381 @@
+"""fc-master / fc-slave: distributed rendering over a real PVM virtual machine.
+
+Every test runs the real programs: fc-master starts a private pvmd (or joins one the test
+started) and real fc-slave tasks that run the renderer. Frames must be pixel-identical to one
+POV-Ray process rendering the same frames. The `coordinator` fixture kills, by pid, whatever
+a test leaves behind; tests also assert that nothing was left.
+"""
+import os
+import signal
+import subprocess
+import time
+
+import numpy as np
+import pytest
+
+from conftest import TOP, coordinator_cmdline, coordinator_stats, load_rgb
+
+pytestmark = pytest.mark.usefixtures("coordinator_build")
+
+SCENE = "moving.pov"
+# Small frames, few of them: the whole module must stay fast on 2 cores.
+SMALL = ["+W160", "+H120", "+KFI1", "+KFF8"]
+# Slow enough (about 0.2 s per frame per process) to interrupt a render in the middle.
+SLOW = ["+W320", "+H240", "+KFI1", "+KFF16", "+A0.1", "+AM2", "+R3"]
+
+
+def assert_same_frames(outdir, reference, only=None):
+    """outdir holds exactly the reference's frames (or the subset `only`), pixel for pixel."""
+    files = sorted(os.listdir(outdir))
+    expected = sorted(reference) if only is None else sorted(only)
+    # Invariant: output names are POV-Ray's own, and no temporary file is left over.
+    assert files == expected
+    for name in files:
+        got = load_rgb(os.path.join(outdir, name))
+        want = reference[name]
+        assert got.shape == want.shape, name
+        differing = int(np.any(got != want, axis=2).sum())
+        # Invariant: distributed frames equal the single-process render exactly.
+        assert differing == 0, "%s: %d pixels differ" % (name, differing)
+
+
+def wait_for_frames(outdir, count, proc, timeout=60):
+    """Wait until outdir holds at least `count` final frames (fails if proc ends first)."""
+    deadline = time.time() + timeout
+    while time.time() < deadline:
+        if os.path.isdir(outdir):
+            done = [f for f in os.listdir(outdir) if f.endswith(".tga")]
+            if len(done) >= count:
+                return done
+        assert proc.poll() is None, "fc-master ended early:\n" + proc.communicate()[1]
+        time.sleep(0.02)
+    raise AssertionError("no %d frames after %d s" % (count, timeout))
+
+
+def program_pids(coordinator, name):
+    """Marked processes running the program `name` (by argv[0])."""
+    return [p for p in coordinator.pids()
+            if os.path.basename(coordinator_cmdline(p).split(" ")[0]) == name]
+
+
+def parent_pid(pid):
+    try:
+        with open("/proc/%d/stat" % pid) as f:
+            return int(f.read().rsplit(")", 1)[1].split()[1])
+    except OSError:
+        return 0
+
+
+def slave_pids(coordinator):
+    return program_pids(coordinator, "fc-slave")
+
+
+# --- correctness of every division scheme ---------------------------------------------------
+
+def test_schedule_unit_tests():
+    # Splitting, duplicates, re-queueing and resume planning, without PVM (schedule_test.cpp).
+    r = subprocess.run(["make", "-C", os.path.join(TOP, "coordinator"), "test-schedule"],
+                       capture_output=True, text=True)
+    assert r.returncode == 0, r.stdout + r.stderr
+    assert "all checks passed" in r.stdout
+
+
+@pytest.mark.parametrize("fc", [False, True], ids=["no-fc", "fc"])
+@pytest.mark.parametrize("slaves", [1, 2, 3])
+@pytest.mark.parametrize("division", ["sequence", "frame", "hybrid"])
+def test_division_matches_single_process(coordinator, coordinator_references, tmp_path,
+                                         division, slaves, fc):
+    out = tmp_path / "out"
+    stats = tmp_path / "stats.json"
+    r = coordinator.run((["--no-fc"] if not fc else []) +
+                        ["--quiet", "--division", division, "--slaves", str(slaves),
+                         "--stats", str(stats), SCENE] + SMALL + ["-o", str(out)])
+    assert r.returncode == 0, r.stderr
+    if fc:
+        # The renderer has the fc options, so the master used them.
+        assert "frame coherence" not in r.stderr.lower(), r.stderr
+    assert_same_frames(out, coordinator_references.frames(SCENE, SMALL))
+    # Invariant: the master stops its pvmd and every slave and renderer.
+    assert coordinator.wait_no_processes() == []
+
+    s = coordinator_stats(stats)
+    assert s["success"] and s["division"] == division
+    assert s["virtual_machine"] == "private"
+    assert s["frames_total"] == 8 and s["frames_rendered"] == 8
+    assert [h["slaves"] for h in s["hosts"]] == [slaves]
+    ntiles = 1 if division == "sequence" else 4     # 160x120 in 80x80 tiles
+    for f in s["frames"]:
+        # Invariant: each frame is assembled from each tile exactly once, with its statistics.
+        assert sorted(t["tile"] for t in f["tiles"]) == list(range(ntiles))
+        assert f["rays"] > 0 and f["host"] and f["time"] >= 0
+    for u in s["units"]:
+        assert u["status"] in ("finished", "truncated", "cancelled", "stopped")
+        assert u["host"] and u["first"] <= u["last"]
+
+
+def test_antialiasing_method2_tiles_match(coordinator, coordinator_references, tmp_path):
+    opts = ["+W160", "+H120", "+KFI1", "+KFF4", "+A0.1", "+AM2"]
+    out = tmp_path / "out"
+    r = coordinator.run(["--no-fc", "--quiet", "--division", "frame", "--slaves", "2",
+                         SCENE] + opts + ["-o", str(out)])
+    assert r.returncode == 0, r.stderr
+    assert_same_frames(out, coordinator_references.frames(SCENE, opts))
+
+
+def test_antialiasing_method1_block_aligned_tiles_match(coordinator, coordinator_references,
+                                                        tmp_path):
+    # +AM1 works on 32-pixel render blocks: tiles that are multiples of 32 keep pixels exact.
+    opts = ["+W160", "+H120", "+KFI1", "+KFF3", "+A0.1", "+AM1"]
+    out = tmp_path / "out"
+    r = coordinator.run(["--no-fc", "--division", "hybrid", "--tile", "64", "--slaves", "2",
+                         SCENE] + opts + ["-o", str(out)])
+    assert r.returncode == 0, r.stderr
+    assert "antialiasing method 1" not in r.stderr
+    assert_same_frames(out, coordinator_references.frames(SCENE, opts))
+
+
+def test_antialiasing_method1_unaligned_tiles_warn(coordinator, tmp_path):
+    opts = ["+W160", "+H120", "+KFI1", "+KFF2", "+A0.1", "+AM1"]
+    r = coordinator.run(["--no-fc", "--quiet", "--division", "frame", "--slaves", "1",
+                         SCENE] + opts + ["-o", str(tmp_path / "out")])
+    assert r.returncode == 0, r.stderr
+    assert r.stderr.count("antialiasing method 1") == 1
+
+
+def test_ini_file_renders_unchanged(coordinator, coordinator_references, tmp_path):
+    # moving.ini names its scene relative to the working directory, as POV-Ray expects.
+    out = tmp_path / "out"
+    r = coordinator.run(["--no-fc", "--quiet", "--slaves", "2", "moving.ini", "-o", str(out)])
+    assert r.returncode == 0, r.stderr
+    ref = coordinator_references.frames("moving.ini", [])
+    assert sorted(ref) == ["moving%02d.tga" % i for i in range(1, 13)]
+    assert_same_frames(out, ref)
+
+
+@pytest.mark.parametrize("opts", [
+    ["+W96", "+H72", "+KFI1", "+KFF12", "+SF7", "+EF10"],           # subset: moving07..10
+    ["+W96", "+H72", "+KFI1", "+KFF9", "+KC"],                       # cyclic: digits of 10
+    ["+W96", "+H72", "+KFI3", "+KFF11", "Frame_Step=3"],             # frames 3, 6, 9
+    ["+W96", "+H72", "+KFI98", "+KFF101"],                           # names widen to 3 digits
+], ids=["subset", "cyclic", "step", "digits"])
+def test_frame_ranges_and_names_follow_povray(coordinator, coordinator_references, tmp_path,
+                                             opts):
+    out = tmp_path / "out"
+    r = coordinator.run(["--no-fc", "--quiet", "--division", "sequence", "--slaves", "2",
+                         SCENE] + opts + ["-o", str(out)])
+    assert r.returncode == 0, r.stderr
+    assert_same_frames(out, coordinator_references.frames(SCENE, opts))
+
+
+def test_still_image_and_render_area(coordinator, coordinator_references, tmp_path):
+    # No animation options: one image; a partial render area keeps zeros outside, like POV-Ray.
+    opts = ["+W160", "+H120", "+SC20", "+EC130", "+SR10", "+ER100"]
+    out = tmp_path / "out"
+    r = coordinator.run(["--no-fc", "--quiet", "--division", "frame", "--tile", "40",
+                         "--slaves", "3", SCENE] + opts + ["-o", str(out)])
+    assert r.returncode == 0, r.stderr
+    ref = coordinator_references.frames(SCENE, opts)
+    assert sorted(ref) == ["moving.tga"]
+    assert_same_frames(out, ref)
+
+
+def test_joins_running_virtual_machine(coordinator, coordinator_references, tmp_path):
+    env = coordinator.env({"PVM_ALLOW_ROOT": "1"})
+    started = subprocess.run(["pvm"], input="quit\n", env=env, capture_output=True, text=True,
+                             timeout=30)
+    assert "pvmd still running" in started.stdout + started.stderr, started
+    # The pvmd may briefly fork a helper (pvmd'); the daemon is the one whose parent is not.
+    pvmds = program_pids(coordinator, "pvmd")
+    pvmds = [p for p in pvmds if parent_pid(p) not in pvmds]
+    assert len(pvmds) == 1, [coordinator_cmdline(p) for p in coordinator.pids()]
+    try:
+        out = tmp_path / "out"
+        stats = tmp_path / "stats.json"
+        r = coordinator.run(["--no-fc", "--quiet", "--stats", str(stats), SCENE] + SMALL +
+                            ["-o", str(out)], env={"PVM_ALLOW_ROOT": "1"})
+        assert r.returncode == 0, r.stderr
+        assert coordinator_stats(stats)["virtual_machine"] == "running", r.stderr
+        assert_same_frames(out, coordinator_references.frames(SCENE, SMALL))
+        # Invariant: a virtual machine the master did not start keeps running, without slaves.
+        deadline = time.time() + 10
+        while slave_pids(coordinator) and time.time() < deadline:
+            time.sleep(0.1)
+        assert slave_pids(coordinator) == [], r.stderr
+        assert pvmds[0] in coordinator.pids(), r.stderr
+    finally:
+        subprocess.run(["pvm"], input="halt\n", env=env, capture_output=True, text=True,
+                       timeout=30)
+    assert coordinator.wait_no_processes() == []
+
+
+# --- faults ----------------------------------------------------------------------------------
+
+def test_resume_after_killing_master(coordinator, coordinator_references, tmp_path):
+    out = tmp_path / "out"
+    args = ["--no-fc", "--quiet", "--division", "sequence", "--slaves", "1", SCENE] + SLOW + \
+           ["-o", str(out)]
+    ref = coordinator_references.frames(SCENE, SLOW)
+    p = coordinator.start(args)
+    wait_for_frames(out, 3, p)
+    p.send_signal(signal.SIGKILL)
+    p.communicate()
+    # Invariant: a killed master takes its private pvmd, slaves and renderers with it.
+    assert coordinator.wait_no_processes() == []
+    before = sorted(os.listdir(out))
+    assert 3 <= len(before) < len(ref)
+    # Invariant: only complete frames exist, and under final names only.
+    assert_same_frames(out, ref, only=before)
+
+    stats = tmp_path / "stats.json"
+    r = coordinator.run(args + ["--stats", str(stats)])
+    assert r.returncode == 0, r.stderr
+    assert_same_frames(out, ref)
+    s = coordinator_stats(stats)
+    # Invariant: the second run renders only the frames that were missing.
+    assert s["frames_resumed"] == len(before)
+    assert s["frames_rendered"] == len(ref) - len(before)
+    assert coordinator.wait_no_processes() == []
+
+
+def test_nothing_to_do_when_complete(coordinator, tmp_path):
+    out = tmp_path / "out"
+    args = ["--no-fc", "--quiet", SCENE, "+W64", "+H48", "+KFI1", "+KFF3", "-o", str(out)]
+    assert coordinator.run(args).returncode == 0
+    mtimes = {f: os.stat(out / f).st_mtime_ns for f in os.listdir(out)}
+    r = coordinator.run(args)
+    assert r.returncode == 0 and "nothing to render" in r.stderr
+    assert {f: os.stat(out / f).st_mtime_ns for f in os.listdir(out)} == mtimes
+
+
+def test_killed_slave_work_is_requeued(coordinator, coordinator_references, tmp_path):
+    out = tmp_path / "out"
+    p = coordinator.start(["--no-fc", "--division", "sequence", "--slaves", "2", SCENE] +
+                          SLOW + ["-o", str(out)])
+    wait_for_frames(out, 2, p)
+    victims = slave_pids(coordinator)
+    assert len(victims) == 2
+    os.kill(victims[0], signal.SIGKILL)
+    _, err = p.communicate(timeout=120)
+    assert p.returncode == 0, err
+    assert "exited" in err
+    assert_same_frames(out, coordinator_references.frames(SCENE, SLOW))
+    assert coordinator.wait_no_processes() == []
+
+
+def test_unresponsive_slave_times_out(coordinator, coordinator_references, tmp_path):
+    out = tmp_path / "out"
+    p = coordinator.start(["--no-fc", "--timeout", "2", "--division", "sequence", "--slaves",
+                           "2", SCENE] + SLOW + ["-o", str(out)])
+    wait_for_frames(out, 2, p)
+    victim = slave_pids(coordinator)[0]
+    os.kill(victim, signal.SIGSTOP)
+    _, err = p.communicate(timeout=120)
+    assert p.returncode == 0, err
+    assert "silent" in err
+    assert_same_frames(out, coordinator_references.frames(SCENE, SLOW))
+    assert coordinator.wait_no_processes() == []
+
+
+def test_interrupt_stops_everything(coordinator, coordinator_references, tmp_path):
+    out = tmp_path / "out"
+    p = coordinator.start(["--no-fc", "--division", "frame", "--slaves", "2", SCENE] + SLOW +
+                          ["-o", str(out)])
+    wait_for_frames(out, 1, p)
+    p.send_signal(signal.SIGINT)
+    _, err = p.communicate(timeout=60)
+    assert p.returncode == 130, err
+    assert "interrupted" in err
+    assert coordinator.wait_no_processes() == []
+    assert_same_frames(out, coordinator_references.frames(SCENE, SLOW),
+                       only=os.listdir(out))
+
+
+# --- bad input -------------------------------------------------------------------------------
+
+def test_scene_that_does_not_parse(coordinator, tmp_path):
+    out = tmp_path / "out"
+    r = coordinator.run(["--no-fc", "--slaves", "3", "broken.pov", "+W64", "+H48", "+KFI1",
+                         "+KFF6", "-o", str(out)])
+    assert r.returncode == 1
+    # Invariant: the renderer's error (file, line, message) is reported once.
+    assert r.stderr.count("Parse Error") == 1, r.stderr
+    assert "broken.pov' line 9" in r.stderr
+    assert "No matching } in 'sphere'" in r.stderr
+    assert os.listdir(out) == []
+    assert coordinator.wait_no_processes() == []
+
+
+def test_scene_failing_late_keeps_only_complete_frames(coordinator, coordinator_references,
+                                                       tmp_path):
+    out = tmp_path / "out"
+    opts = ["+W64", "+H48", "+KFI1", "+KFF8"]
+    r = coordinator.run(["--no-fc", "--division", "sequence", "--slaves", "2", "fails-late.pov"]
+                        + opts + ["-o", str(out)])
+    assert r.returncode == 1
+    assert r.stderr.count("deliberate failure") == 1, r.stderr
+    # Frames 1-4 have clock < 0.5 and render; whatever was finished is complete and exact.
+    ref = coordinator_references.frames("fails-late.pov", ["+W64", "+H48", "+KFI1", "+KFF8",
+                                                           "+SF1", "+EF4"])
+    done = os.listdir(out)
+    assert set(done) <= set(ref)
+    assert_same_frames(out, ref, only=done)
+    assert coordinator.wait_no_processes() == []
+
+
+def test_missing_scene_file(coordinator, tmp_path):
+    r = coordinator.run(["--no-fc", "no-such-scene.pov", "-o", str(tmp_path / "out")])
+    assert r.returncode == 1
+    assert "no-such-scene.pov" in r.stderr and "Cannot open input file" in r.stderr
+    assert coordinator.wait_no_processes() == []
+
+
+@pytest.mark.parametrize("args", [
+    ["--frobnicate", SCENE, "-o", "OUT"],
+    ["--division", "diagonal", SCENE, "-o", "OUT"],
+    ["--tile", "abc", SCENE, "-o", "OUT"],
+    ["--slaves", "0", SCENE, "-o", "OUT"],
+    ["--no-fc=yes", SCENE, "-o", "OUT"],
+    [SCENE, "-o", "OUT", "--stats"],
+    [SCENE, "-o"],
+    ["-o", "OUT"],
+], ids=["unknown", "division", "tile", "slaves", "flag-value", "missing-value", "missing-dir",
+        "no-scene"])
+def test_bad_options(coordinator, tmp_path, args):
+    args = [str(tmp_path / "out") if a == "OUT" else a for a in args]
+    r = coordinator.run(args, renderer=False)
+    assert r.returncode == 2
+    assert "usage: fc-master" in r.stderr
+    assert not (tmp_path / "out").exists()
+    assert coordinator.pids() == []
+
+
+@pytest.mark.parametrize("which", ["slave", "povray"])
+def test_missing_program(coordinator, tmp_path, which):
+    r = coordinator.run(["--no-fc", "--" + which, "/nonexistent/fc-program", SCENE] + SMALL +
+                        ["-o", str(tmp_path / "out")])
+    assert r.returncode == 1
+    assert "/nonexistent/fc-program" in r.stderr
+    assert not (tmp_path / "out").exists() or os.listdir(tmp_path / "out") == []
+    assert coordinator.wait_no_processes() == []
+
+
+def test_help(coordinator):
+    r = coordinator.run(["--help"], renderer=False)
+    assert r.returncode == 0
+    assert r.stdout.startswith("usage: fc-master") and "--division" in r.stdout
+
+
+# --- progress and statistics -----------------------------------------------------------------
+
+def test_progress_lines_and_summary(coordinator, tmp_path):
+    r = coordinator.run(["--no-fc", "--progress", "0.3", "--slaves", "2", SCENE, "+W160",
+                         "+H120", "+KFI1", "+KFF8", "+A0.1", "+AM2", "+R3", "-o",
+                         str(tmp_path / "out")])
+    assert r.returncode == 0, r.stderr
+    lines = r.stderr.splitlines()
+    # Not a terminal: plain periodic lines, no carriage returns.
+    assert "\r" not in r.stderr
+    assert any(l.startswith("fc-master: ") and " frames (" in l for l in lines), r.stderr
+    assert any("8 frame(s) rendered" in l for l in lines)
+    header = [l for l in lines if l.split()[:1] == ["host"]]
+    assert header and "rays" in header[0] and "busy" in header[0]
