@@ -75,10 +75,9 @@ void DependencyStore::Commit(int x, int y, PixelRecorder &recorder) {
     } else if (recorder.Voxels().empty()) {
         block = kEmptyBlock;
     } else {
-        const std::vector<std::uint32_t> &ids = recorder.SortedVoxels();
-        std::uint8_t *out = new std::uint8_t[VoxelListSize(ids)];
-        EncodeVoxelList(ids, out);
-        block = out;
+        // Insertion order, no sort: the recorder's list is already unique (see voxel_list.h).
+        const std::vector<std::uint32_t> &ids = recorder.Voxels();
+        block = NewVoxelList(ids.data(), ids.size());
     }
     // Only this thread touches this slot (distinct pixels per thread), so no lock.
     const std::uint8_t *old = slots_[slot];

@@ -132,8 +132,11 @@ TEST(ChangeSetCapsule, MarksEveryVoxelTheCapsuleMeetsAndFewerThanItsBox) {
     }
     // Invariant: the hull is tighter than the box it refines, and within it.
     EXPECT_LT(tight.voxels.Count() * 4, loose.voxels.Count());
-    for (std::uint32_t v = 0; v < grid.VoxelCount(); ++v)
-        if (tight.voxels.Test(v)) EXPECT_TRUE(loose.voxels.Test(v));
+    for (std::uint32_t v = 0; v < grid.VoxelCount(); ++v) {
+        if (tight.voxels.Test(v)) {
+            EXPECT_TRUE(loose.voxels.Test(v));
+        }
+    }
 }
 
 TEST(ChangeSetCapsule, NaNCapsuleIsRejected) {

@@ -15,9 +15,12 @@ using namespace povrayfc;
 
 namespace {
 
+// The pixel's voxels, sorted: ForEachVoxel promises no order, so tests compare sets (a
+// duplicate would still show up as an extra element).
 std::vector<std::uint32_t> Stored(const DependencyStore &s, int x, int y) {
     std::vector<std::uint32_t> v;
     s.ForEachVoxel(x, y, [&](std::uint32_t id) { v.push_back(id); });
+    std::sort(v.begin(), v.end());
     return v;
 }
 
@@ -71,9 +74,11 @@ TEST(DependencyStore, CommitReplaceClearAndHas) {
     EXPECT_FALSE(s.Has(0, 0));
     Record(r, {40000, 3, 70000, 3, 0});
     s.Commit(2, 1, r);
-    // A committed pixel has its ids, sorted and unique.
+    // A committed pixel has exactly its unique ids.
     EXPECT_TRUE(s.Has(2, 1));
     EXPECT_EQ(Stored(s, 2, 1), (std::vector<std::uint32_t>{0, 3, 40000, 70000}));
+    // Commit does not reorder (sort) the recorder's list.
+    EXPECT_EQ(r.Voxels(), (std::vector<std::uint32_t>{40000, 3, 70000, 0}));
     EXPECT_EQ(s.VoxelCountAt(2, 1), 4u);
     // Neighbouring pixels are untouched.
     EXPECT_FALSE(s.Has(1, 1));
@@ -166,7 +171,9 @@ TEST(DependencyStore, ConcurrentCommitsOfDistinctPixels) {
     DependencyStore s(W, H);
     auto idsFor = [](int x, int y, int round) {
         std::vector<std::uint32_t> v;
-        for (int k = 0; k < 1 + (x * 7 + y * 3 + round) % 40; ++k) v.push_back(std::uint32_t((x + 1) * 1000 + y * 37 + k * (round + 1)));
+        // Unique ids in no particular order (k -> k * 7919 mod 64 is one-to-one).
+        for (int k = 0; k < 1 + (x * 7 + y * 3 + round) % 40; ++k)
+            v.push_back(std::uint32_t((x + 1) * 1000 + y * 37 + (k * 7919 % 64) * (round + 1)));
         return v;
     };
     // Each thread owns every kThreads-th pixel and commits it several times (replacing).
@@ -198,16 +205,27 @@ TEST(DependencyStore, RealisticPixelsCostUnderTwoBytesPerEntry) {
     const int W = 64, H = 48;
     DependencyStore s(W, H);
     PixelRecorder r;
+    std::vector<std::set<std::uint32_t>> want(std::size_t(W) * H);
     for (int y = 0; y < H; ++y)
         for (int x = 0; x < W; ++x) {
             r.Begin();
             Vec3 eye{0, 0, -30}, dir{(x - W / 2) / 80.0, (y - H / 2) / 80.0, 1};
             double tHit = 25 + 10.0 * ((x * 13 + y * 7) % 17) / 17;
-            auto add = [&](std::uint32_t v) { r.Add(v); };
+            std::set<std::uint32_t> &w = want[std::size_t(y) * W + std::size_t(x)];
+            auto add = [&](std::uint32_t v) {
+                r.Add(v);
+                w.insert(v);
+            };
             WalkSegment(g, eye, dir, 0, tHit, add);
             Vec3 hit = eye + tHit * dir;
             WalkSegment(g, hit, Vec3{30, 30, -30} - hit, 0, 1, add);
             s.Commit(x, y, r);
+        }
+    for (int y = 0; y < H; ++y)
+        for (int x = 0; x < W; ++x) {
+            const std::set<std::uint32_t> &w = want[std::size_t(y) * W + std::size_t(x)];
+            // Each pixel holds exactly the set of voxels its rays walked.
+            ASSERT_EQ(Stored(s, x, y), std::vector<std::uint32_t>(w.begin(), w.end())) << x << "," << y;
         }
     double entries = double(s.EntryCount());
     double payload = double(s.MemoryBytes() - sizeof(s) - std::size_t(W) * H * sizeof(void *));

@@ -1,13 +1,21 @@
 // DependencyStore: per-pixel lists of the voxels a pixel's rays touched, compactly encoded.
 //
 // Layout (chosen by measurement, see povrayfc_bench and README.md): one pointer per pixel
-// to its own heap block holding the pixel's voxel ids sorted ascending, as gaps between
-// consecutive ids in 1 or 2 bytes with a 1-bit-per-entry length stream (see voxel_list.h).
-// Measured with povrayfc_bench (64^3 grid, 1920x1080, synthetic camera/shadow/mirror rays):
-//   ~80 entries/pixel:  1.67 B/entry (headers included), 141 B/pixel, 293 MB (309 MB heap)
-//   ~150 entries/pixel: 1.50 B/entry, 235 B/pixel, 488 MB (520 MB heap): far under 4 GiB.
-// DirtyPixels over 1920x1080 decodes every entry of every clean pixel: ~1.2-2 ns/entry,
-// 0.2-0.37 s for ~150 entries/pixel; ~2 ms when nothing changed (no decoding).
+// to its own heap block holding the pixel's voxel ids in the order the PixelRecorder first
+// saw them (unique, NOT sorted), as signed steps between consecutive ids in 1 or 2 bytes
+// with a 1-bit-per-entry length stream (see voxel_list.h). Rays walk the grid voxel by
+// voxel, so consecutive ids mostly differ by +-1, +-nx or +-nx*ny and the steps are as
+// small as the ascending gaps of a sorted list were; not sorting made Commit 5-8x cheaper
+// (the sort was ~18% of a real render with fc on, the whole commit ~28%).
+// Measured with povrayfc_bench (64^3 grid, 1920x1080, synthetic camera/shadow/mirror rays,
+// loaded 2-vCPU VM; before -> after dropping the sort):
+//   ~80 entries/pixel:  Commit 1030 -> 185 ns/pixel; 1.674 -> 1.694 B/entry (headers
+//                       included), 143 B/pixel, 296 MB (312 MB heap)
+//   ~150 entries/pixel: Commit 2480 -> 290 ns/pixel; 1.502 -> 1.558 B/entry, 244 B/pixel,
+//                       505 MB (538 MB heap): far under 4 GiB.
+// DirtyPixels over 1920x1080 decodes every entry of every clean pixel: ~0.9-1 ns/entry,
+// 130-155 ms at ~80 entries/pixel and 220-305 ms at ~150 (1 thread, CPU time; 185-205 /
+// 295-360 ms before); ~2 ms when nothing changed (no decoding).
 //
 // Why a block per pixel rather than shared arenas: Commit() from several render threads
 // then needs no lock at all (each thread writes only its own pixels' slots; malloc is
@@ -49,9 +57,10 @@ class DependencyStore {
     int Width() const { return width_; }
     int Height() const { return height_; }
 
-    // Replaces pixel (x, y)'s list with the recorder's voxels (or the "everything" mark).
-    // Sorts the recorder's list in place but leaves it otherwise intact. Thread-safe for
-    // distinct pixels. Throws std::invalid_argument for (x, y) outside the image.
+    // Replaces pixel (x, y)'s list with the recorder's voxels (or the "everything" mark),
+    // encoded in the recorder's order in one pass (no sort); the recorder is left as it was.
+    // Thread-safe for distinct pixels. Throws std::invalid_argument for (x, y) outside the
+    // image.
     void Commit(int x, int y, PixelRecorder &recorder);
     // Forgets pixel (x, y): it counts as dirty until committed again.
     void Clear(int x, int y);
@@ -62,8 +71,9 @@ class DependencyStore {
     // The pixel was committed with PixelRecorder::MarkEverything().
     bool DependsOnEverything(int x, int y) const { return slots_[Slot(x, y)] == EverythingBlock(); }
 
-    // Calls f(uint32_t voxel) for each voxel of pixel (x, y), ascending. Nothing for a
-    // pixel without a list or with the "everything" mark.
+    // Calls f(uint32_t voxel) once for each voxel of pixel (x, y), in NO particular order
+    // (today: the order the recorder first saw them; not ascending since Commit stopped
+    // sorting). Nothing for a pixel without a list or with the "everything" mark.
     template <class F>
     void ForEachVoxel(int x, int y, F f) const {
         const std::uint8_t *p = slots_[Slot(x, y)];

@@ -16,8 +16,9 @@ namespace povrayfc {
 // Dedupe: a walker never repeats a voxel within one ray, but the camera, shadow, reflected
 // and (with anti-aliasing) sub-sample rays of a pixel overlap heavily, so Add() first
 // drops an immediate repeat and then checks a small open-addressing hash set whose slots
-// carry an epoch stamp, which makes Begin() O(1). Only unique ids are kept; they are
-// sorted once, at commit.
+// carry an epoch stamp, which makes Begin() O(1). Only unique ids are kept, in first-seen
+// order, which is the order the rays walked them; DependencyStore::Commit encodes them in
+// that order (consecutive ids are mostly grid neighbours) and does not sort them.
 class PixelRecorder {
   public:
     PixelRecorder();
@@ -52,9 +53,10 @@ class PixelRecorder {
     void MarkEverything() { everything_ = true; }
     bool Everything() const { return everything_; }
 
-    // Unique voxels recorded so far, in first-seen order (sorted by SortedVoxels()).
+    // Unique voxels recorded so far, in first-seen order (until SortedVoxels() is called).
     const std::vector<std::uint32_t> &Voxels() const { return list_; }
-    // Sorts the recorded voxels in place and returns them.
+    // Sorts the recorded voxels in place and returns them. For tests and tools: the commit
+    // path does not sort.
     const std::vector<std::uint32_t> &SortedVoxels();
 
   private:
