@@ -185,7 +185,9 @@ def test_crashed_host_work_is_requeued(coordinator, coordinator_references, vm, 
             os.kill(pid, signal.SIGKILL)
     err = finish(coordinator, p)
     assert p.returncode == 0, err + coordinator.trace()
-    assert "on fch2 was silent" in err
+    # Invariant: every frame of the crashed host arrives, from another host. (Whether the
+    # master first times the host out, "on fch2 was silent", or an idle slave duplicates
+    # its unit and finishes it first depends on timing, so neither message is required.)
     assert_same(out, coordinator_references.frames(SCENE, SLOW))
 
 
