@@ -62,6 +62,8 @@ const char *const kHelp =
     "  --private               always start a private pvmd, even if one runs\n"
     "  --no-fc                 render without frame coherence\n"
     "  --no-duplicates         idle slaves never duplicate running work (stragglers)\n"
+    "  --no-local-slaves       no slaves on the master's own host (it only assembles, as\n"
+    "                          in the paper; e.g. to emulate a cluster of namespace hosts)\n"
     "  --povray PATH           renderer (default: povray-fc next to fc-master, then PATH)\n"
     "  --slave PATH            fc-slave binary (default: next to fc-master)\n"
     "  --timeout SECONDS       a slave silent this long is presumed dead (default 120)\n"
@@ -82,6 +84,7 @@ struct Options {
     bool force_private = false;
     bool fc = true;
     bool duplicates = true;
+    bool local_slaves = true;   // false: the master's own host renders nothing
     std::string povray;
     std::string slave;
     double timeout = 120;
@@ -148,7 +151,7 @@ Options parse_options(int argc, char **argv)
             has_value = true;
         }
         static const std::set<std::string> flags = {"--private", "--no-fc", "--no-duplicates",
-                                                    "--quiet"};
+                                                    "--no-local-slaves", "--quiet"};
         static const std::set<std::string> valued = {
             "--output", "--division", "--tile", "--ranges", "--slaves", "--hostfile", "--pvmd-name",
             "--povray", "--slave", "--timeout", "--nice", "--progress", "--stats"};
@@ -158,6 +161,7 @@ Options parse_options(int argc, char **argv)
             if (name == "--private") o.force_private = true;
             else if (name == "--no-fc") o.fc = false;
             else if (name == "--no-duplicates") o.duplicates = false;
+            else if (name == "--no-local-slaves") o.local_slaves = false;
             else if (name == "--quiet") o.quiet = true;
             continue;
         }
@@ -279,6 +283,7 @@ private:
     bool prepare_output();
     bool start_vm();
     bool spawn_on(HostInfo &host, int count);
+    void wait_for_other_hosts();
     bool spawn_all();
 
     // The receive loop and its handlers, one per tag.
@@ -500,6 +505,34 @@ bool Master::start_vm()
     return true;
 }
 
+// With --no-local-slaves only other hosts render, and a private pvmd adds the hosts of its
+// hostfile in the background: wait (bounded) until one has joined.
+void Master::wait_for_other_hosts()
+{
+    double deadline = now() + std::max(30.0, opt_.timeout / 2);
+    while (now() < deadline) {
+        int nhost = 0, narch = 0;
+        struct pvmhostinfo *hi = nullptr;
+        if (pvm_config(&nhost, &narch, &hi) < 0)
+            return;
+        bool other = false;
+        for (int i = 0; i < nhost; i++) {
+            if (hi[i].hi_tid == my_dtid_ || hosts_.count(hi[i].hi_tid))
+                continue;
+            HostInfo h;
+            h.dtid = hi[i].hi_tid;
+            h.name = hi[i].hi_name;
+            hosts_[h.dtid] = h;
+            pvm_notify(PvmHostDelete, FC_HOSTDEL, 1, &h.dtid);
+        }
+        for (auto &kv : hosts_)
+            other = other || kv.first != my_dtid_;
+        if (other)
+            return;
+        usleep(200000);
+    }
+}
+
 bool Master::spawn_on(HostInfo &host, int count)
 {
     std::vector<int> tids(size_t(count), 0);
@@ -540,10 +573,14 @@ bool Master::spawn_on(HostInfo &host, int count)
 
 bool Master::spawn_all()
 {
+    if (!opt_.local_slaves)
+        wait_for_other_hosts();
     spawn_time_ = now();
     bool any = false;
     for (auto &kv : hosts_) {
         HostInfo &h = kv.second;
+        if (!opt_.local_slaves && h.dtid == my_dtid_)
+            continue;
         int n = opt_.slaves > 0 ? opt_.slaves : (h.cpus > 0 ? h.cpus : 1);
         if (opt_.slaves > 0 || h.cpus > 0)
             h.grown = true;
