@@ -24,6 +24,38 @@ inline void RecordRaySegment(const double origin[3], const double direction[3], 
     if (detail::tlsRecorder) detail::RecordSegment(origin, direction, tmax);
 }
 
+// A shadow test's segment, recorded when the test returns: to the light, or only up to
+// a fully opaque blocker when the test found one (BlockedAt), since nothing beyond it
+// can change the answer. Costs one thread-local test when the thread is not recording.
+class ShadowSegmentRecord {
+  public:
+    ShadowSegmentRecord(const double origin[3], const double direction[3], double depth)
+        : active_(detail::tlsRecorder != nullptr), depth_(depth), reach_(depth) {
+        if (!active_) return;
+        for (int i = 0; i < 3; ++i) {
+            origin_[i] = origin[i];
+            direction_[i] = direction[i];
+        }
+    }
+    ~ShadowSegmentRecord() {
+        if (active_) detail::RecordSegment(origin_, direction_, reach_);
+    }
+    ShadowSegmentRecord(const ShadowSegmentRecord &) = delete;
+    ShadowSegmentRecord &operator=(const ShadowSegmentRecord &) = delete;
+
+    // The depth the test started with (distance to the light along direction).
+    double Depth() const { return depth_; }
+    // An opaque blocker at `distance` from the original origin answered the test.
+    void BlockedAt(double distance) {
+        if (distance >= 0.0 && distance < reach_) reach_ = distance;
+    }
+
+  private:
+    bool active_;
+    double origin_[3] = {0, 0, 0}, direction_[3] = {0, 0, 0};
+    double depth_, reach_;
+};
+
 // Routes this thread's RecordRaySegment() calls into `recorder`, walking `grid`,
 // until StopRecordingRays().
 void StartRecordingRays(PixelRecorder &recorder, const VoxelGrid &grid);
