@@ -94,7 +94,7 @@ void FrameCoherence::MarkAllDirty() {
 // Returns why this frame cannot reuse the last one's pixels, or "" when it can.
 // Sets newSequence when the stored state is of no use any more.
 std::string FrameCoherence::CompareWithLastFrame(const FrameSetup &setup, const SceneSignature &signature,
-                                                 const SceneEffects &effects, bool &newSequence) {
+                                                 bool &newSequence) {
     newSequence = true;
     if (!seq_) return "first frame";
     const FrameSetup &last = seq_->setup;
@@ -108,7 +108,6 @@ std::string FrameCoherence::CompareWithLastFrame(const FrameSetup &setup, const 
     newSequence = false;
     if (signature.lights != seq_->signature.lights) return "light sources changed";
     if (signature.global != seq_->signature.global) return "global settings or atmosphere changed";
-    (void)effects;
     return "";
 }
 
@@ -156,7 +155,7 @@ void FrameCoherence::BeginFrame(bool enabled, const FrameSetup &setup, const voi
     }
 
     bool newSequence = false;
-    std::string reason = CompareWithLastFrame(setup, signature, effects, newSequence);
+    std::string reason = CompareWithLastFrame(setup, signature, newSequence);
 
     if (reason.empty()) {
         // Objects are matched as a multiset of signatures: what vanished dirties its old

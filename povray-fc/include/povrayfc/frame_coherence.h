@@ -92,10 +92,8 @@ class FrameCoherence {
     void Reset();
     void StartSequence(const FrameSetup &setup, const SceneSignature &signature);
     std::string CompareWithLastFrame(const FrameSetup &setup, const SceneSignature &signature,
-                                     const SceneEffects &effects, bool &newSequence);
+                                     bool &newSequence);
     void MarkAllDirty();
-    void ComputeDirtyPixels(const SceneSignature &signature);
-    PixelRecorder &ThreadRecorder();
 
     std::unique_ptr<Sequence> seq_;
     DirtyMask dirty_;
