@@ -103,7 +103,8 @@ $(STAMPS)/configure-args: FORCE | deps
 
 # Configure once per set of flags. Our patches never touch the build system (our
 # code is a separate library), so a patch change does not re-run configure.
-$(STAMPS)/configured: $(STAMPS)/unpacked $(STAMPS)/configure-args | $(STAMPS)/patched
+# configure links its test programs with LIBS, so our library must exist first.
+$(STAMPS)/configured: $(STAMPS)/unpacked $(STAMPS)/configure-args | $(STAMPS)/patched $(FC_LIB)
 	cd $(POV_TREE)/unix && ./prebuild.sh >$(BUILD)/prebuild.log 2>&1 \
 	  || { echo "make: unix/prebuild.sh failed, see $(BUILD)/prebuild.log" >&2; exit 1; }
 	cd $(POV_TREE) && PATH=$(CCACHE_PATH):$$PATH ./configure --prefix=/usr --sysconfdir=/etc \
