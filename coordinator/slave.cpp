@@ -168,11 +168,11 @@ void Slave::on_job()
         fail(j.unit, -1, err);
         return;
     }
-    std::vector<std::string> argv = {setup_.renderer};
+    // The thread count goes first, so a +WT among the user's options overrides it.
+    std::vector<std::string> argv = {setup_.renderer, strf("+WT%d", std::max(1, j.threads))};
     argv.insert(argv.end(), setup_.options.begin(), setup_.options.end());
     argv.insert(argv.end(), setup_.extra.begin(), setup_.extra.end());
     argv.insert(argv.end(), {"-D", "+FT", "-UA", "+O" + jobdir_ + "/f"});
-    argv.push_back(strf("+WT%d", std::max(1, j.threads)));
     if (setup_.digits > 0) {
         argv.push_back(strf("+SF%d", j.first));
         argv.push_back(strf("+EF%d", j.last));
