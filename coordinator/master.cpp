@@ -1215,13 +1215,7 @@ int Master::run()
 int main(int argc, char **argv)
 {
     Options opt = parse_options(argc, argv);
-    struct sigaction sa;
-    memset(&sa, 0, sizeof sa);
-    sa.sa_handler = on_signal;
-    sigaction(SIGINT, &sa, nullptr);
-    sigaction(SIGTERM, &sa, nullptr);
-    sigaction(SIGHUP, &sa, nullptr);
-    signal(SIGPIPE, SIG_IGN);
+    install_signal_handlers(on_signal);
     Master master(opt);
     return master.run();
 }

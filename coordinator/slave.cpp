@@ -532,13 +532,7 @@ int main(int argc, char **argv)
         printf("usage: fc-slave (spawned by fc-master through PVM; see coordinator/README.md)\n");
         return 0;
     }
-    struct sigaction sa;
-    memset(&sa, 0, sizeof sa);
-    sa.sa_handler = on_signal;
-    sigaction(SIGTERM, &sa, nullptr);
-    sigaction(SIGINT, &sa, nullptr);
-    sigaction(SIGHUP, &sa, nullptr);
-    signal(SIGPIPE, SIG_IGN);
+    install_signal_handlers(on_signal);
 
     Slave slave;
     std::string err;

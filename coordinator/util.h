@@ -97,6 +97,10 @@ void debug_log(const char *format, ...) __attribute__((format(printf, 1, 2)));
 
 // Trim spaces at both ends.
 std::string trim(const std::string &s);
+
+// Routes SIGINT, SIGTERM and SIGHUP to `handler` and ignores SIGPIPE (a dead peer's pipe
+// must give EPIPE, not kill the process).
+void install_signal_handlers(void (*handler)(int));
 bool starts_with(const std::string &s, const std::string &prefix);
 
 } // namespace fc
