@@ -21,25 +21,26 @@ std::string FrameStats::LogLine() const {
     const double percent = pixels ? 100.0 * double(traced) / double(pixels) : 0.0;
     std::snprintf(buf, sizeof buf,
                   "Frame coherence: frame %d: %llu of %llu pixels traced (%.1f%%), %llu reused, "
-                  "%llu of %llu voxels dirty, bookkeeping %.3f s, store %.1f MiB",
+                  "%llu samples traced, %llu reused, %llu changed hulls, bookkeeping %.3f s, store %.1f MiB",
                   frame, (unsigned long long)traced, (unsigned long long)pixels, percent,
-                  (unsigned long long)reused, (unsigned long long)dirtyVoxels,
-                  (unsigned long long)voxels, bookkeepingSeconds, double(storeBytes) / 1048576.0);
+                  (unsigned long long)reused, (unsigned long long)samplesTraced,
+                  (unsigned long long)samplesReused, (unsigned long long)changedHulls, bookkeepingSeconds,
+                  double(storeBytes) / 1048576.0);
     std::string line = buf;
     if (!fullReason.empty()) line += "; full frame: " + fullReason;
     return line;
 }
 
 std::string FrameStats::CsvHeader() {
-    return "frame,clock,coherent,full_reason,pixels,traced,reused,dirty_voxels,voxels,rays,"
-           "bookkeeping_s,store_bytes,render_s";
+    return "frame,clock,coherent,full_reason,pixels,traced,reused,changed_hulls,samples_traced,"
+           "samples_reused,rays,bookkeeping_s,store_bytes,render_s";
 }
 
 std::string FrameStats::CsvRow() const {
     std::ostringstream row;
     row.precision(17);
     row << frame << ',' << clock << ',' << (coherent ? 1 : 0) << ',' << CsvQuoted(fullReason)
-        << ',' << pixels << ',' << traced << ',' << reused << ',' << dirtyVoxels << ',' << voxels
+        << ',' << pixels << ',' << traced << ',' << reused << ',' << changedHulls << ',' << samplesTraced << ',' << samplesReused
         << ',' << rays << ',' << bookkeepingSeconds << ',' << storeBytes << ',' << renderSeconds;
     return row.str();
 }

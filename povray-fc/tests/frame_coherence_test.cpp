@@ -1,156 +1,280 @@
-// The session's per-frame decisions, driven the way the POV-Ray hooks drive it.
+// The session and the block tracer driven the way the patched trace task drives them, on a
+// toy renderer with neighbour-dependent anti-aliasing: every frame rendered with frame
+// coherence must equal the same frame rendered from scratch, bit for bit.
+#include <cmath>
+#include <cstring>
+#include <vector>
+
 #include <gtest/gtest.h>
 
+#include "povrayfc/block_tracer.h"
 #include "povrayfc/frame_coherence.h"
 #include "povrayfc/ray_recording.h"
 
 namespace povrayfc {
 namespace {
 
-const int kW = 4, kH = 1;
+const int kW = 16, kH = 8, kBlock = 4;
 const void *const kScene = reinterpret_cast<const void *>(0x1234);
 
-FrameSetup FrameSetupFor(int frame) {
+struct ToyBox {
+    std::uint64_t id;
+    Box box;
+};
+
+struct ToyScene {
+    std::vector<ToyBox> boxes;
+    double lightY = 50;
+    std::uint64_t camera = 7;
+};
+
+// Slab test; returns the entry distance or -1.
+double Hit(const ToyBox &b, const double o[3], const double d[3]) {
+    double t0 = 1e-9, t1 = 1e30;
+    for (int a = 0; a < 3; ++a) {
+        if (d[a] == 0) {
+            if (o[a] < b.box.lo[a] || o[a] > b.box.hi[a]) return -1;
+            continue;
+        }
+        double ta = (b.box.lo[a] - o[a]) / d[a], tb = (b.box.hi[a] - o[a]) / d[a];
+        if (ta > tb) std::swap(ta, tb);
+        t0 = std::max(t0, ta);
+        t1 = std::min(t1, tb);
+    }
+    return t0 <= t1 ? t0 : -1;
+}
+
+// One camera sample at image position (x, y): a ray along +z, the box it hits, and a
+// shadow ray from there straight up to the light. Records both rays like POV-Ray's hooks.
+void TraceToy(const ToyScene &scene, double x, double y, float rgbft[5]) {
+    const double o[3] = {x, y, -10}, d[3] = {0, 0, 1};
+    double best = 1e30;
+    const ToyBox *hit = nullptr;
+    for (const ToyBox &b : scene.boxes) {
+        const double t = Hit(b, o, d);
+        if (t >= 0 && t < best) best = t, hit = &b;
+    }
+    RecordRaySegment(o, d, hit ? best : 2e10);
+    std::memset(rgbft, 0, 5 * sizeof(float));
+    if (!hit) return;
+    const double p[3] = {x, y, -10 + best}, up[3] = {0, 1, 0};
+    const double toLight = scene.lightY - p[1];
+    bool shadow = false;
+    for (const ToyBox &b : scene.boxes) {
+        const double t = (&b == hit) ? -1 : Hit(b, p, up);
+        if (t >= 0 && t < toLight) shadow = true;
+    }
+    RecordRaySegment(p, up, toLight);
+    rgbft[0] = float(hit->id);
+    rgbft[1] = shadow ? 0.25f : 1.0f;
+}
+
+using Image = std::vector<float>;  // 5 floats a pixel
+
+// AA in the manner of POV-Ray's method 1: a pixel that differs from its left neighbour
+// (the block's left border sample for the first column) is supersampled.
+template <class Sample>
+void RenderBlock(int left, int top, int right, int bottom, Sample sample, Image &out) {
+    for (int y = top; y <= bottom; ++y) {
+        float prev[5];
+        sample(double(left) - 1.0, double(y), prev);
+        for (int x = left; x <= right; ++x) {
+            float c[5];
+            sample(double(x), double(y), c);
+            float *px = &out[(std::size_t(y) * kW + x) * 5];
+            std::memcpy(px, c, sizeof c);
+            if (c[0] != prev[0] || c[1] != prev[1]) {
+                for (int s = 0; s < 4; ++s) {
+                    float sub[5];
+                    sample(x + ((s & 1) ? 0.25 : -0.25), y + ((s & 2) ? 0.25 : -0.25), sub);
+                    for (int k = 0; k < 5; ++k) px[k] += sub[k];
+                }
+                for (int k = 0; k < 5; ++k) px[k] /= 5.0f;
+            }
+            std::memcpy(prev, c, sizeof c);
+        }
+    }
+}
+
+SceneSignature Signature(const ToyScene &scene) {
+    SceneSignature s;
+    s.camera = scene.camera;
+    s.lights = std::uint64_t(scene.lightY * 1000);
+    for (const ToyBox &b : scene.boxes) {
+        ObjectSignature o;
+        o.hash = b.id * 1000003u ^ std::uint64_t(std::llround(b.box.lo.x * 1024)) * 31 ^
+                 std::uint64_t(std::llround(b.box.lo.y * 1024)) * 17 ^ std::uint64_t(std::llround(b.box.lo.z * 1024));
+        o.bounds = b.box;
+        s.objects.push_back(o);
+    }
+    s.complete = true;
+    return s;
+}
+
+FrameSetup ToySetup(int frame, int threads = 1) {
     FrameSetup s;
     s.width = kW;
     s.height = kH;
     s.right = kW - 1;
     s.bottom = kH - 1;
+    s.samplingMethod = 1;
+    s.blockSize = kBlock;
     s.frameNumber = frame;
-    s.gridResolution = 8;
+    s.renderThreads = threads;
     return s;
 }
 
-ObjectSignature Object(std::uint64_t hash, double x0, double x1) {
-    ObjectSignature o;
-    o.hash = hash;
-    o.bounds = Box{Vec3{x0, 0, 0}, Vec3{x1, 1, 1}};
-    return o;
+Image RenderFull(const ToyScene &scene) {
+    Image img(std::size_t(kW) * kH * 5, 0.0f);
+    for (int by = 0; by < kH; by += kBlock)
+        for (int bx = 0; bx < kW; bx += kBlock)
+            RenderBlock(bx, by, bx + kBlock - 1, by + kBlock - 1,
+                        [&](double x, double y, float c[5]) { TraceToy(scene, x, y, c); }, img);
+    return img;
 }
 
-SceneSignature Scene(std::vector<ObjectSignature> objects, std::uint64_t camera = 7) {
-    SceneSignature s;
-    s.camera = camera;
-    s.objects = std::move(objects);
-    s.complete = true;
-    return s;
+struct FcResult {
+    Image image;
+    std::uint64_t tracedSamples = 0;
+};
+
+// Renders like the patched TraceTask: Begin per block, Reuse or trace each sample, End.
+FcResult RenderFc(const ToyScene &scene, int frame, SceneEffects effects = {}, std::vector<std::string> inexact = {},
+                  int threads = 1) {
+    FrameCoherence &fc = FrameCoherence::Get();
+    SceneSignature sig = Signature(scene);
+    sig.inexactEffects = inexact;
+    PublishSceneSignature(kScene, sig);
+    fc.BeginFrame(true, ToySetup(frame, threads), kScene, effects);
+    FcResult r;
+    r.image.assign(std::size_t(kW) * kH * 5, 0.0f);
+    BlockTracer tracer(fc.Plan());
+    std::uint32_t serial = 0;
+    for (int by = 0; by < kH; by += kBlock)
+        for (int bx = 0; bx < kW; bx += kBlock, ++serial) {
+            const int right = bx + kBlock - 1, bottom = by + kBlock - 1;
+            if (tracer.Begin(serial, bx, by, right, bottom)) {
+                for (int y = by; y <= bottom; ++y)
+                    for (int x = bx; x <= right; ++x) tracer.StoredPixel(x, y, &r.image[(std::size_t(y) * kW + x) * 5]);
+                continue;
+            }
+            RenderBlock(bx, by, right, bottom,
+                        [&](double x, double y, float c[5]) {
+                            if (tracer.Reuse(x, y, c)) return;
+                            tracer.BeginSample();
+                            TraceToy(scene, x, y, c);
+                            tracer.EndSample(x, y, c);
+                            ++r.tracedSamples;
+                        },
+                        r.image);
+            for (int y = by; y <= bottom; ++y)
+                for (int x = bx; x <= right; ++x) tracer.SetPixel(x, y, &r.image[(std::size_t(y) * kW + x) * 5]);
+            tracer.End();
+        }
+    fc.EndFrame(0);
+    return r;
 }
 
-// Renders a frame as the trace tasks do: pixel x's single ray runs along y=0.5, z=0.5
-// from x=0 up to x = 2x+1 (so pixel 0 sees [0,1], pixel 3 sees [0,7]).
-int RenderFrame(FrameCoherence &fc) {
-    int traced = 0;
-    for (int x = 0; x < kW; ++x) {
-        if (!fc.NeedsTrace(x, 0)) continue;
-        fc.BeginRecording();
-        const double origin[3] = {0.0, 0.5, 0.5}, dir[3] = {1.0, 0.0, 0.0};
-        RecordRaySegment(origin, dir, 2.0 * x + 1.0);
-        fc.CommitPixel(x, 0);
-        const float colour[5] = {float(x), 0, 0, 0, 0};
-        fc.StoreColour(x, 0, colour);
-        ++traced;
+// Each test starts a run of its own: fc off forgets what an earlier test left.
+class FrameCoherenceRun : public ::testing::Test {
+  protected:
+    void SetUp() override {
+        FrameCoherence &fc = FrameCoherence::Get();
+        fc.BeginFrame(false, ToySetup(0), nullptr, {});
+        fc.EndFrame(0);
     }
-    fc.EndFrame(0);
-    return traced;
+};
+
+ToyScene Frame(double moverX) {
+    ToyScene s;
+    s.boxes.push_back({1, Box{Vec3{-5, -5, 5}, Vec3{30, 30, 6}}});        // back wall
+    s.boxes.push_back({2, Box{Vec3{moverX, 2, 0}, Vec3{moverX + 2.5, 3.5, 1}}});  // a moving box
+    s.boxes.push_back({3, Box{Vec3{11, 6, 2}, Vec3{13, 6.5, 3}}});        // still, casts a shadow
+    return s;
 }
 
-void Begin(FrameCoherence &fc, int frame, SceneSignature scene, SceneEffects effects = {}) {
-    PublishSceneSignature(kScene, std::move(scene));
-    fc.BeginFrame(true, FrameSetupFor(frame), kScene, effects);
+TEST_F(FrameCoherenceRun, EveryFrameEqualsTheFullRenderAndTracesLess) {
+    std::uint64_t fullSamples = 0, fcSamples = 0;
+    for (int f = 0; f < 12; ++f) {
+        const ToyScene scene = Frame(1.0 + 0.75 * f);
+        const Image full = RenderFull(scene);
+        const FcResult fc = RenderFc(scene, f + 1);
+        // Invariant: frame coherence never changes a pixel.
+        ASSERT_EQ(std::memcmp(full.data(), fc.image.data(), full.size() * sizeof(float)), 0) << "frame " << f + 1;
+        if (f == 0) {
+            EXPECT_EQ(FrameCoherence::Get().LastStats().fullReason, "first frame");
+            fullSamples = fc.tracedSamples;
+        } else {
+            EXPECT_EQ(FrameCoherence::Get().LastStats().fullReason, "");
+            EXPECT_GT(fc.tracedSamples, 0u);
+            fcSamples += fc.tracedSamples;
+        }
+    }
+    // A box a few pixels wide moving: far fewer samples than full frames.
+    EXPECT_LT(fcSamples, 11 * fullSamples / 3);
 }
 
-std::vector<ObjectSignature> Floor() { return {Object(1, 0, 8)}; }  // spans the grid
+TEST_F(FrameCoherenceRun, UnchangedFrameReusesEveryBlock) {
+    RenderFc(Frame(2.0), 1);
+    const FcResult again = RenderFc(Frame(2.0), 2);
+    EXPECT_EQ(again.tracedSamples, 0u);
+    EXPECT_EQ(FrameCoherence::Get().LastStats().traced, 0u);
+    EXPECT_EQ(FrameCoherence::Get().LastStats().reused, std::uint64_t(kW * kH));
+}
 
-TEST(FrameCoherence, FirstFrameTracesEverythingThenNothingWhenUnchanged) {
+TEST_F(FrameCoherenceRun, LightChangeIsAFullFrameAndTheCameraStartsASequence) {
+    RenderFc(Frame(2.0), 1);
+    ToyScene lit = Frame(2.0);
+    lit.lightY = 40;
+    const FcResult full = RenderFc(lit, 2);
+    EXPECT_EQ(FrameCoherence::Get().LastStats().fullReason, "light sources changed");
+    ASSERT_EQ(std::memcmp(full.image.data(), RenderFull(lit).data(), full.image.size() * sizeof(float)), 0);
+    lit.camera = 8;
+    RenderFc(lit, 3);
+    EXPECT_EQ(FrameCoherence::Get().LastStats().fullReason, "camera changed: new sequence");
+}
+
+TEST_F(FrameCoherenceRun, RecordingPausesWhileFramesStayFullAndResumes) {
+    ToyScene s = Frame(2.0);
+    RenderFc(s, 1);
+    for (int f = 2; f <= 5; ++f) {
+        s.camera = 100 + f;  // a moving camera
+        RenderFc(s, f);
+    }
+    // Invariant: after two wasted full frames the hooks go idle.
+    EXPECT_FALSE(FrameCoherence::Get().Active());
+    EXPECT_NE(FrameCoherence::Get().LastStats().fullReason.find("recording paused"), std::string::npos);
+    // The camera stops: this frame records again, the next reuses.
+    RenderFc(s, 6);
+    EXPECT_EQ(FrameCoherence::Get().LastStats().fullReason, "recording resumed");
+    const FcResult r = RenderFc(s, 7);
+    EXPECT_EQ(r.tracedSamples, 0u);
+    EXPECT_EQ(std::memcmp(r.image.data(), RenderFull(s).data(), r.image.size() * sizeof(float)), 0);
+}
+
+TEST_F(FrameCoherenceRun, InexactEffectsReuseOnlyStaticReproducibleFrames) {
+    const ToyScene s = Frame(2.0);
+    RenderFc(s, 1, {}, {"radiosity"}, 1);
+    EXPECT_EQ(RenderFc(s, 2, {}, {"radiosity"}, 1).tracedSamples, 0u);  // one thread: reproducible
+    EXPECT_GT(RenderFc(s, 3, {}, {"radiosity"}, 2).tracedSamples, 0u);  // two: render settings changed
+    EXPECT_GT(RenderFc(s, 4, {}, {"radiosity"}, 2).tracedSamples, 0u);  // two threads: never reused
+    EXPECT_NE(FrameCoherence::Get().LastStats().fullReason.find("radiosity"), std::string::npos);
+    RenderFc(s, 5, {}, {"jittered area light"}, 1);
+    EXPECT_GT(RenderFc(s, 6, {}, {"jittered area light"}, 1).tracedSamples, 0u);  // frames differ
+    // A moved object under an inexact effect: full frame, still exact.
+    const FcResult moved = RenderFc(Frame(3.0), 7, {}, {"jittered area light"}, 1);
+    EXPECT_EQ(std::memcmp(moved.image.data(), RenderFull(Frame(3.0)).data(), moved.image.size() * sizeof(float)), 0);
+}
+
+TEST_F(FrameCoherenceRun, OffForgetsEverything) {
+    RenderFc(Frame(2.0), 1);
     FrameCoherence &fc = FrameCoherence::Get();
-    Begin(fc, 1, Scene(Floor()));
-    ASSERT_TRUE(fc.Active());
-    // Invariant: a new sequence has nothing to reuse.
-    EXPECT_EQ(RenderFrame(fc), kW);
+    PublishSceneSignature(kScene, Signature(Frame(2.0)));
+    fc.BeginFrame(false, ToySetup(2), kScene, {});
+    EXPECT_FALSE(fc.Active());
+    fc.EndFrame(0);
+    RenderFc(Frame(2.0), 3);
     EXPECT_EQ(fc.LastStats().fullReason, "first frame");
-    Begin(fc, 2, Scene(Floor()));
-    // Invariant: an identical scene re-traces no pixel and keeps the stored colours.
-    EXPECT_EQ(RenderFrame(fc), 0);
-    float c[5];
-    fc.StoredColour(3, 0, c);
-    EXPECT_EQ(c[0], 3.0f);
-}
-
-TEST(FrameCoherence, MovedObjectDirtiesOnlyPixelsWhoseRaysCrossedIt) {
-    FrameCoherence &fc = FrameCoherence::Get();
-    std::vector<ObjectSignature> before = Floor(), after = Floor();
-    before.push_back(Object(50, 5.2, 5.8));
-    after.push_back(Object(51, 6.2, 6.8));
-    Begin(fc, 1, Scene(before));
-    RenderFrame(fc);
-    Begin(fc, 2, Scene(after));
-    // Invariant: pixels 0..1 reach x<=3 only, so they stay clean; pixel 3 reaches x=7.
-    EXPECT_FALSE(fc.NeedsTrace(0, 0));
-    EXPECT_FALSE(fc.NeedsTrace(1, 0));
-    EXPECT_TRUE(fc.NeedsTrace(3, 0));
-    RenderFrame(fc);
-}
-
-TEST(FrameCoherence, DuplicateObjectsAreMatchedAsAMultiset) {
-    FrameCoherence &fc = FrameCoherence::Get();
-    std::vector<ObjectSignature> two = Floor(), one = Floor();
-    two.push_back(Object(60, 6.5, 7.0));
-    two.push_back(Object(60, 6.5, 7.0));
-    one.push_back(Object(60, 6.5, 7.0));
-    Begin(fc, 1, Scene(two));
-    RenderFrame(fc);
-    Begin(fc, 2, Scene(one));
-    // Invariant: removing one of two identical objects is a change where they were.
-    EXPECT_TRUE(fc.NeedsTrace(3, 0));
-    EXPECT_FALSE(fc.NeedsTrace(0, 0));
-    RenderFrame(fc);
-}
-
-TEST(FrameCoherence, CameraChangeStartsANewSequence) {
-    FrameCoherence &fc = FrameCoherence::Get();
-    Begin(fc, 1, Scene(Floor(), 7));
-    RenderFrame(fc);
-    Begin(fc, 2, Scene(Floor(), 8));
-    EXPECT_EQ(RenderFrame(fc), kW);
-    EXPECT_NE(fc.LastStats().fullReason.find("camera"), std::string::npos);
-}
-
-TEST(FrameCoherence, UnboundedChangeRendersTheWholeFrame) {
-    FrameCoherence &fc = FrameCoherence::Get();
-    Begin(fc, 1, Scene(Floor()));
-    RenderFrame(fc);
-    std::vector<ObjectSignature> objects = Floor();
-    ObjectSignature plane;
-    plane.hash = 99;
-    plane.infinite = true;
-    objects.push_back(plane);
-    Begin(fc, 2, Scene(objects));
-    EXPECT_EQ(RenderFrame(fc), kW);
-    EXPECT_FALSE(fc.LastStats().fullReason.empty());
-}
-
-TEST(FrameCoherence, InexactEffectMakesTheFrameInactiveAndSaysWhich) {
-    FrameCoherence &fc = FrameCoherence::Get();
-    SceneEffects effects;
-    effects.radiosity = true;
-    Begin(fc, 1, Scene(Floor()), effects);
-    // Invariant: an effect fc cannot keep exact renders exactly as POV-Ray, tracking nothing.
-    EXPECT_FALSE(fc.Active());
-    fc.EndFrame(0);
-    EXPECT_NE(fc.LastStats().fullReason.find("radiosity"), std::string::npos);
-}
-
-TEST(FrameCoherence, OffForgetsEverything) {
-    FrameCoherence &fc = FrameCoherence::Get();
-    Begin(fc, 1, Scene(Floor()));
-    RenderFrame(fc);
-    PublishSceneSignature(kScene, Scene(Floor()));
-    fc.BeginFrame(false, FrameSetupFor(2), kScene, {});
-    EXPECT_FALSE(fc.Active());
-    fc.EndFrame(0);
-    Begin(fc, 3, Scene(Floor()));
-    // Invariant: after an fc-off frame nothing stored is trusted.
-    EXPECT_EQ(RenderFrame(fc), kW);
 }
 
 }  // namespace

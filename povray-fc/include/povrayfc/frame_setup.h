@@ -22,9 +22,11 @@ struct FrameSetup {
     bool mosaicPreview = false;   // +SP/+EP: traces pixels at several sizes
     bool continueTrace = false;   // +C
     bool sceneCameraOverride = false;  // camera set by the front end, not the scene
+    int renderThreads = 1;        // +WT: effects with per-thread random sequences are
+                                  // reproducible only with one
 
     // Options of fc itself.
-    int gridResolution = 0;       // voxels along the longest axis; 0 = automatic
+    int gridResolution = 0;       // voxels of the change index along its longest axis; 0 = automatic
     std::string statsFile;        // per-frame CSV, empty for none
     std::string maskDir;          // folder for per-frame re-traced pixel masks, empty for none
 

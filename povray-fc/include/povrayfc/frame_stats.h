@@ -13,13 +13,14 @@ struct FrameStats {
     bool coherent = false;        // fc active: some pixels could be reused
     std::string fullReason;       // why every pixel was traced; empty when fc re-traced a subset
     std::uint64_t pixels = 0;     // pixels in the render area
-    std::uint64_t traced = 0;     // pixels traced
-    std::uint64_t reused = 0;     // pixels whose stored colour was reused
-    std::uint64_t dirtyVoxels = 0;
-    std::uint64_t voxels = 0;     // voxels in the grid (0 when fc is inactive)
+    std::uint64_t traced = 0;     // pixels with at least one camera sample traced
+    std::uint64_t reused = 0;     // pixels made only of stored samples (or stored whole)
+    std::uint64_t changedHulls = 0;    // changed regions the stored samples were tested against
+    std::uint64_t samplesTraced = 0;   // camera samples traced (AA samples included)
+    std::uint64_t samplesReused = 0;   // camera samples whose stored colour was reused
     std::uint64_t rays = 0;       // rays traced (POV-Ray's "Rays:" count)
-    double bookkeepingSeconds = 0.0;  // change detection, dirty pixels, statistics
-    std::uint64_t storeBytes = 0;     // dependency lists and stored colours
+    double bookkeepingSeconds = 0.0;  // change detection and statistics, outside the render threads
+    std::uint64_t storeBytes = 0;     // stored samples, segments and pixels
     double renderSeconds = 0.0;       // wall time from fc's frame start to its end (tracing)
 
     // One human-readable line for the render log.

@@ -1,0 +1,75 @@
+// BlockTracer: one render thread's side of frame coherence, one render block at a time.
+//
+// The patched trace task drives it like this for every block POV-Ray hands it:
+//
+//   if (tracer.Begin(serial, rect))            // nothing in the block changed:
+//       send tracer.StoredPixel(x, y) for every pixel, done
+//   for every camera sample POV-Ray's sampling code takes at (x, y):
+//       if (!tracer.Reuse(x, y, colour)) {      // stored and clean: colour filled in
+//           tracer.BeginSample(); trace it; tracer.EndSample(x, y, colour);
+//       }
+//   tracer.SetPixel(x, y, final colour) for every pixel; tracer.End();
+//
+// POV-Ray's anti-aliasing code runs unchanged on top (see sample_store.h): a clean
+// sample's stored colour is exactly what tracing it again would give.
+#ifndef POVRAYFC_BLOCK_TRACER_H
+#define POVRAYFC_BLOCK_TRACER_H
+
+#include <cstdint>
+#include <memory>
+#include <vector>
+
+#include "povrayfc/frame_plan.h"
+#include "povrayfc/ray_recording.h"
+#include "povrayfc/sample_store.h"
+
+namespace povrayfc {
+
+class BlockTracer {
+  public:
+    // Reads the plan of the frame each block is rendered in (the plan must outlive it).
+    explicit BlockTracer(const FramePlan &plan) : plan_(&plan) {}
+
+    // Starts block `serial` (POV-Ray's block number) covering [left..right]x[top..bottom].
+    // Returns true when the stored block can be sent as it is: then StoredPixel() gives
+    // every pixel and no other call is needed for this block.
+    bool Begin(std::uint32_t serial, int left, int top, int right, int bottom);
+    void StoredPixel(int x, int y, float rgbft[5]) const;
+
+    // The stored colour of the clean sample at exactly (x, y), kept for this frame too.
+    // False when there is none: the caller traces the sample.
+    bool Reuse(double x, double y, float rgbft[5]);
+    // Records the rays traced until EndSample into the sample at (x, y).
+    void BeginSample();
+    void EndSample(double x, double y, const float rgbft[5]);
+
+    // The block's final pixel colours, then End() stores the block.
+    void SetPixel(int x, int y, const float rgbft[5]);
+    void End();
+
+    // The current block is under frame coherence (false: fc is idle this frame, and the
+    // caller traces as POV-Ray always does).
+    bool Active() const { return active_; }
+
+  private:
+    bool FindOld(double x, double y, std::uint32_t &index) const;
+    void IndexOldSamples();
+    void MarkTraced(double x, double y);
+
+    const FramePlan *plan_;
+    bool active_ = false;   // this block is under fc (mode != kIdle)
+    bool record_ = false;   // mode kRecord: samples and segments are kept
+    std::uint32_t serial_ = 0;
+    const BlockRecord *old_ = nullptr;       // the stored record, when it may be reused from
+    std::vector<std::uint8_t> oldDirty_;     // per old sample
+    std::vector<std::uint32_t> oldIndex_;    // open addressing: old sample index + 1, 0 = empty
+    std::uint32_t oldMask_ = 0;
+    BlockRecord next_;                       // the record being built for this frame
+    std::vector<std::uint8_t> tracedPixels_; // per pixel of the block
+    std::uint64_t tracedSamples_ = 0, reusedSamples_ = 0;
+    SampleRecorder recorder_;
+};
+
+}  // namespace povrayfc
+
+#endif

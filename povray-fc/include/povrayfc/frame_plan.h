@@ -1,0 +1,43 @@
+// FramePlan: what the render threads are to do with stored samples in this frame, decided
+// by the session before tracing starts and read-only while it runs.
+#ifndef POVRAYFC_FRAME_PLAN_H
+#define POVRAYFC_FRAME_PLAN_H
+
+#include <atomic>
+#include <cstdint>
+
+#include "povrayfc/change_index.h"
+#include "povrayfc/dirty_mask.h"
+#include "povrayfc/sample_store.h"
+
+namespace povrayfc {
+
+// Per-frame counts, added to by the render threads once per block.
+struct FrameCounters {
+    std::atomic<std::uint64_t> tracedPixels{0}, reusedPixels{0};
+    std::atomic<std::uint64_t> tracedSamples{0}, reusedSamples{0};
+    std::atomic<std::uint64_t> reusedBlocks{0}, replayedBlocks{0};
+
+    void Reset() {
+        tracedPixels = reusedPixels = tracedSamples = reusedSamples = reusedBlocks = replayedBlocks = 0;
+    }
+};
+
+struct FramePlan {
+    enum class Mode {
+        kIdle,    // fc off or paused: the hooks do nothing, POV-Ray renders as it always does
+        kRecord,  // reuse clean samples, trace and record the others
+        kOpaque,  // an effect fc cannot follow: keep the pixels only; reuse them only when
+                  // nothing changed and that effect's renders are reproducible
+    };
+    Mode mode = Mode::kIdle;
+    bool everythingDirty = true;       // no stored sample may be reused this frame
+    const ChangeIndex *changes = nullptr;  // what changed; empty when nothing did
+    SampleStore *store = nullptr;
+    FrameCounters *counters = nullptr;
+    DirtyMask *tracedMask = nullptr;   // pixels traced this frame, when a mask is wanted
+};
+
+}  // namespace povrayfc
+
+#endif

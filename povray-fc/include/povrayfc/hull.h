@@ -1,0 +1,65 @@
+// Hull: a region of space whose contents changed between two frames, and the conservative
+// test of a stored ray segment against it.
+#ifndef POVRAYFC_HULL_H
+#define POVRAYFC_HULL_H
+
+#include <algorithm>
+#include <cmath>
+
+#include "povrayfc/geometry.h"
+#include "povrayfc/segment.h"
+
+namespace povrayfc {
+
+// A changed region: always a box, optionally refined by a capsule (spheres, cylinders and
+// cones, whose boxes are loose when slanted). A point can only have changed if it lies in
+// the box and, when there is one, in the capsule.
+struct Hull {
+    Box box;
+    bool hasCapsule = false;
+    Capsule capsule;
+};
+
+// A hull around `box` (and `capsule`), widened by a relative hair so that single-precision
+// bounding boxes of POV-Ray's objects (rounded to nearest, not outward) still contain the
+// object. Throws std::invalid_argument for NaN; an empty box gives an empty hull.
+Hull MakeHull(const Box &box);
+Hull MakeHull(const Box &box, const Capsule &capsule);
+
+// How far from a stored segment the ray it stands for may lie, near a target of centre c
+// and half extent h (max norm): the float rounding of origin, direction and length moves
+// the ray by at most 2^-23 of (|origin| + the distance to the far side of the target);
+// the margin is 16 times that.
+inline double SegmentMargin(const Segment &s, const Vec3 &c, double h) {
+    const double x = s.origin[0], y = s.origin[1], z = s.origin[2];
+    const double o = std::max(std::fabs(x), std::max(std::fabs(y), std::fabs(z)));
+    const double oc = std::max(std::fabs(x - c.x), std::max(std::fabs(y - c.y), std::fabs(z - c.z)));
+    return 0x1p-19 * (o + oc + h) + 1e-30;
+}
+
+// Cheap rejection before a slab test: true when the segment lies entirely beyond one
+// face of `box` widened by `margin` (both of its ends past it, an unbounded ray moving
+// away or parallel). No division.
+inline bool BeyondOneFace(const Segment &s, const Box &box, double margin) {
+    const double length = s.length;
+    for (int a = 0; a < 3; ++a) {
+        const double o = s.origin[a], d = s.direction[a];
+        const double e = d == 0.0 ? o : o + length * d;  // +-inf for an unbounded ray
+        const double lo = box.lo[a] - margin, hi = box.hi[a] + margin;
+        if ((o < lo && e < lo) || (o > hi && e > hi)) return true;
+    }
+    return false;
+}
+
+// True when the ray a segment stands for may pass through the closed box (a slab test
+// against the box widened by SegmentMargin). Never false for a ray that touches it.
+bool MayMeet(const Segment &s, const Box &box);
+// The slab test against `box` widened by `margin` (finite boxes only).
+bool MeetsWidened(const Segment &s, const Box &box, double margin);
+
+// True when the ray a segment stands for may pass through the hull (box, then capsule).
+bool MayMeet(const Segment &s, const Hull &hull);
+
+}  // namespace povrayfc
+
+#endif

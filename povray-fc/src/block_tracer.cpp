@@ -1,0 +1,221 @@
+// BlockTracer: deciding a block's clean samples, serving them, recording the traced ones.
+#include "povrayfc/block_tracer.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstring>
+
+namespace povrayfc {
+
+namespace {
+
+std::uint64_t Bits(double v) {
+    std::uint64_t b;
+    std::memcpy(&b, &v, sizeof b);
+    return b;
+}
+
+std::uint32_t KeyHash(double x, double y) {
+    std::uint64_t h = Bits(x) * 0x9E3779B97F4A7C15ull ^ Bits(y);
+    h ^= h >> 29;
+    h *= 0xBF58476D1CE4E5B9ull;
+    return std::uint32_t(h >> 32);
+}
+
+bool SampleIsDirty(const StoredSample &s, const BlockRecord &record, const ChangeIndex &changes) {
+    if (s.segmentCount == StoredSample::kEverything) return true;
+    const Segment *segment = record.segments.data() + s.firstSegment;
+    for (std::uint32_t i = 0; i < s.segmentCount; ++i)
+        if (changes.MayMeet(segment[i])) return true;
+    return false;
+}
+
+}  // namespace
+
+bool BlockTracer::Begin(std::uint32_t serial, int left, int top, int right, int bottom) {
+    const FramePlan &plan = *plan_;
+    active_ = plan.mode != FramePlan::Mode::kIdle;
+    if (!active_) return false;
+    record_ = plan.mode == FramePlan::Mode::kRecord;
+    serial_ = serial;
+    tracedSamples_ = reusedSamples_ = 0;
+
+    next_.left = left;
+    next_.top = top;
+    next_.right = right;
+    next_.bottom = bottom;
+    next_.opaque = !record_;
+    next_.samples.clear();
+    next_.segments.clear();
+    const std::size_t area = std::size_t(right - left + 1) * std::size_t(bottom - top + 1);
+    next_.pixels.assign(area * 5, 0.0f);
+    tracedPixels_.assign(area, 0);
+
+    old_ = plan.store->Find(serial);
+    if (old_ && (!old_->Covers(left, top, right, bottom) || old_->opaque != !record_)) old_ = nullptr;
+    if (old_ && plan.everythingDirty) old_ = nullptr;
+    if (!old_) return false;
+
+    const bool nothingChanged = plan.changes == nullptr || plan.changes->Empty();
+    if (nothingChanged) {
+        plan.counters->reusedPixels += area;
+        plan.counters->reusedSamples += old_->samples.size();
+        plan.counters->reusedBlocks += 1;
+        return true;
+    }
+    if (!record_) {
+        old_ = nullptr;  // an opaque block is reused only when nothing changed
+        return false;
+    }
+
+    // The block's clean samples: those none of whose rays may meet a change.
+    const std::size_t n = old_->samples.size();
+    oldDirty_.resize(n);
+    bool anyDirty = false;
+    for (std::size_t i = 0; i < n; ++i) {
+        oldDirty_[i] = SampleIsDirty(old_->samples[i], *old_, *plan.changes);
+        anyDirty |= oldDirty_[i] != 0;
+    }
+    if (!anyDirty) {
+        plan.counters->reusedPixels += area;
+        plan.counters->reusedSamples += n;
+        plan.counters->reusedBlocks += 1;
+        return true;
+    }
+    IndexOldSamples();
+    return false;
+}
+
+void BlockTracer::StoredPixel(int x, int y, float rgbft[5]) const {
+    const float *c = old_->Pixel(x, y);
+    std::copy(c, c + 5, rgbft);
+}
+
+void BlockTracer::IndexOldSamples() {
+    std::uint32_t size = 16;
+    while (size < 2 * old_->samples.size()) size *= 2;
+    oldIndex_.assign(size, 0);
+    oldMask_ = size - 1;
+    for (std::uint32_t i = 0; i < old_->samples.size(); ++i) {
+        const StoredSample &s = old_->samples[i];
+        std::uint32_t slot = KeyHash(s.x, s.y) & oldMask_;
+        while (oldIndex_[slot] != 0) slot = (slot + 1) & oldMask_;
+        oldIndex_[slot] = i + 1;
+    }
+}
+
+bool BlockTracer::FindOld(double x, double y, std::uint32_t &index) const {
+    std::uint32_t slot = KeyHash(x, y) & oldMask_;
+    for (;;) {
+        const std::uint32_t entry = oldIndex_[slot];
+        if (entry == 0) return false;
+        const StoredSample &s = old_->samples[entry - 1];
+        // Exact comparison: POV-Ray computes a sample's position the same way every frame.
+        if (s.x == x && s.y == y) {
+            index = entry - 1;
+            return true;
+        }
+        slot = (slot + 1) & oldMask_;
+    }
+}
+
+bool BlockTracer::Reuse(double x, double y, float rgbft[5]) {
+    if (!active_ || !record_ || !old_) return false;
+    std::uint32_t i;
+    if (!FindOld(x, y, i) || oldDirty_[i]) return false;
+    const StoredSample &s = old_->samples[i];
+    std::copy(s.colour, s.colour + 5, rgbft);
+    StoredSample kept = s;
+    if (s.segmentCount != StoredSample::kEverything) {
+        kept.firstSegment = std::uint32_t(next_.segments.size());
+        const Segment *first = old_->segments.data() + s.firstSegment;
+        next_.segments.insert(next_.segments.end(), first, first + s.segmentCount);
+    }
+    next_.samples.push_back(kept);
+    ++reusedSamples_;
+    return true;
+}
+
+void BlockTracer::BeginSample() {
+    if (!active_ || !record_) return;
+    recorder_.Begin(next_.segments);
+    StartRecordingRays(recorder_);
+}
+
+void BlockTracer::EndSample(double x, double y, const float rgbft[5]) {
+    if (!active_) return;
+    ++tracedSamples_;
+    MarkTraced(x, y);
+    if (!record_) return;
+    StopRecordingRays();
+    StoredSample s;
+    s.x = x;
+    s.y = y;
+    std::copy(rgbft, rgbft + 5, s.colour);
+    if (recorder_.Everything()) {
+        next_.segments.resize(recorder_.First());  // its segments say nothing
+        s.segmentCount = StoredSample::kEverything;
+    } else {
+        s.firstSegment = std::uint32_t(recorder_.First());
+        s.segmentCount = std::uint32_t(recorder_.Count());
+    }
+    next_.samples.push_back(s);
+}
+
+void BlockTracer::MarkTraced(double x, double y) {
+    // The pixel a sample belongs to: the nearest pixel centre, kept inside the block (AA
+    // method 1 samples the row above and the column left of a block; those count for
+    // the block's edge pixels).
+    const int px = std::clamp(int(std::floor(x + 0.5)), next_.left, next_.right);
+    const int py = std::clamp(int(std::floor(y + 0.5)), next_.top, next_.bottom);
+    tracedPixels_[std::size_t(py - next_.top) * std::size_t(next_.Width()) + std::size_t(px - next_.left)] = 1;
+}
+
+void BlockTracer::SetPixel(int x, int y, const float rgbft[5]) {
+    if (!active_) return;
+    float *c = &next_.pixels[(std::size_t(y - next_.top) * std::size_t(next_.Width()) + std::size_t(x - next_.left)) * 5];
+    std::copy(rgbft, rgbft + 5, c);
+}
+
+void BlockTracer::End() {
+    if (!active_) return;
+    const FramePlan &plan = *plan_;
+    // A pixel counts as traced when one of its own samples was, or when its colour
+    // changed: with anti-aliasing a pixel can change through a neighbour's sample alone
+    // (AA method 1 decides to supersample from the neighbours; method 2 shares corners).
+    if (old_) {
+        for (std::size_t i = 0; i < tracedPixels_.size(); ++i)
+            if (!tracedPixels_[i] && std::memcmp(&old_->pixels[i * 5], &next_.pixels[i * 5], 5 * sizeof(float)) != 0)
+                tracedPixels_[i] = 1;
+    }
+    std::uint64_t traced = 0;
+    for (std::size_t i = 0; i < tracedPixels_.size(); ++i) {
+        if (!tracedPixels_[i]) continue;
+        ++traced;
+        if (plan.tracedMask)
+            plan.tracedMask->Set(next_.left + int(i % std::size_t(next_.Width())),
+                                 next_.top + int(i / std::size_t(next_.Width())));
+    }
+    plan.counters->tracedPixels += traced;
+    plan.counters->reusedPixels += tracedPixels_.size() - traced;
+    plan.counters->tracedSamples += tracedSamples_;
+    plan.counters->reusedSamples += reusedSamples_;
+    plan.counters->replayedBlocks += 1;
+
+    // An exact-size copy: the scratch keeps its capacity for the next block, and the
+    // store holds no slack.
+    auto record = std::make_unique<BlockRecord>();
+    record->left = next_.left;
+    record->top = next_.top;
+    record->right = next_.right;
+    record->bottom = next_.bottom;
+    record->opaque = next_.opaque;
+    record->samples.assign(next_.samples.begin(), next_.samples.end());
+    record->segments.assign(next_.segments.begin(), next_.segments.end());
+    record->pixels.assign(next_.pixels.begin(), next_.pixels.end());
+    old_ = nullptr;
+    plan.store->Put(serial_, std::move(record));
+    active_ = false;
+}
+
+}  // namespace povrayfc

@@ -1,0 +1,135 @@
+// Conservative segment tests against changed hulls: slab test, then segment-capsule distance.
+#include "povrayfc/hull.h"
+
+#include <algorithm>
+#include <stdexcept>
+
+namespace povrayfc {
+
+namespace {
+
+double Dot(const Vec3 &a, const Vec3 &b) { return a.x * b.x + a.y * b.y + a.z * b.z; }
+double Norm(const Vec3 &a) { return std::sqrt(Dot(a, a)); }
+
+Vec3 Centre(const Box &b) { return 0.5 * (b.lo + b.hi); }
+double HalfExtent(const Box &b) {
+    const Vec3 e = b.Extent();
+    return 0.5 * std::max({e.x, e.y, e.z});
+}
+
+// A box widened by a relative hair: POV-Ray keeps object bounds in single precision.
+Box Widened(const Box &b) {
+    double scale = 0.0;
+    for (int a = 0; a < 3; ++a) scale = std::max({scale, std::fabs(b.lo[a]), std::fabs(b.hi[a])});
+    const double m = 0x1p-20 * scale + 1e-30;
+    return Box{b.lo - Vec3{m, m, m}, b.hi + Vec3{m, m, m}};
+}
+
+Vec3 Origin(const Segment &s) { return Vec3{s.origin[0], s.origin[1], s.origin[2]}; }
+Vec3 Direction(const Segment &s) { return Vec3{s.direction[0], s.direction[1], s.direction[2]}; }
+
+// Distance from p to the segment [a, a + ab].
+double PointSegmentDistance(const Vec3 &p, const Vec3 &a, const Vec3 &ab) {
+    const double len2 = Dot(ab, ab);
+    double t = len2 > 0.0 ? Dot(p - a, ab) / len2 : 0.0;
+    t = std::clamp(t, 0.0, 1.0);
+    return Norm(p - (a + t * ab));
+}
+
+// Lower bound (up to rounding the caller's margin covers) on the distance between the
+// segments [p1, p1 + d1] and [p2, p2 + d2]; Ericson, Real-Time Collision Detection 5.1.9.
+// Returns -1 (meaning "may touch") for nearly parallel segments, where the closest pair
+// is ill-conditioned and a rounded solution could overstate the distance.
+double SegmentSegmentDistance(const Vec3 &p1, const Vec3 &d1, const Vec3 &p2, const Vec3 &d2) {
+    const Vec3 r = p1 - p2;
+    const double a = Dot(d1, d1), e = Dot(d2, d2), f = Dot(d2, r);
+    if (a <= 0.0) return PointSegmentDistance(p1, p2, d2);
+    if (e <= 0.0) return PointSegmentDistance(p2, p1, d1);
+    const double b = Dot(d1, d2), c = Dot(d1, r);
+    const double denom = a * e - b * b;  // a e sin^2(angle)
+    if (denom <= 1e-6 * a * e) return -1.0;
+    double s = std::clamp((b * f - c * e) / denom, 0.0, 1.0);
+    double t = (b * s + f) / e;
+    if (t < 0.0) {
+        t = 0.0;
+        s = std::clamp(-c / a, 0.0, 1.0);
+    } else if (t > 1.0) {
+        t = 1.0;
+        s = std::clamp((b - c) / a, 0.0, 1.0);
+    }
+    return Norm((p1 + s * d1) - (p2 + t * d2));
+}
+
+}  // namespace
+
+Hull MakeHull(const Box &box) {
+    if (box.HasNaN()) throw std::invalid_argument("MakeHull: box contains NaN: " + ToString(box));
+    Hull h;
+    h.box = box.Empty() ? Box() : (box.IsFinite() ? Widened(box) : box);
+    return h;
+}
+
+Hull MakeHull(const Box &box, const Capsule &capsule) {
+    if (capsule.a.HasNaN() || capsule.b.HasNaN() || std::isnan(capsule.radius))
+        throw std::invalid_argument("MakeHull: capsule contains NaN");
+    Hull h = MakeHull(box);
+    if (h.box.Empty() || !h.box.IsFinite() || !capsule.a.IsFinite() || !capsule.b.IsFinite() ||
+        !std::isfinite(capsule.radius))
+        return h;
+    h.hasCapsule = true;
+    h.capsule = capsule;
+    // The same relative hair as the box: the capsule comes from rounded transforms too.
+    double scale = std::fabs(capsule.radius);
+    for (int a = 0; a < 3; ++a) scale = std::max({scale, std::fabs(capsule.a[a]), std::fabs(capsule.b[a])});
+    h.capsule.radius = std::fabs(capsule.radius) + 0x1p-20 * scale + 1e-30;
+    return h;
+}
+
+bool MayMeet(const Segment &s, const Box &box) {
+    if (box.Empty()) return false;
+    if (!box.IsFinite()) return true;
+    return MeetsWidened(s, box, SegmentMargin(s, Centre(box), HalfExtent(box)));
+}
+
+bool MeetsWidened(const Segment &s, const Box &box, double m) {
+    // Separating-axis test of the segment against the widened box (the box's three axes
+    // and their cross products with the segment), all multiplications: a slab test's three
+    // divisions cost more than the rest of the test together, and this runs for every
+    // stored segment every frame.
+    const Vec3 o{s.origin[0], s.origin[1], s.origin[2]}, d{s.direction[0], s.direction[1], s.direction[2]};
+    const Vec3 c = 0.5 * (box.lo + box.hi);
+    const Vec3 e = 0.5 * (box.hi - box.lo) + Vec3{m, m, m};
+    const Vec3 oc = o - c;
+    // Beyond `far` along the ray every point is farther from c than any point of the box
+    // (|v|_2 <= |v|_1), which bounds an unbounded ray.
+    const double dmax = std::max(std::fabs(d.x), std::max(std::fabs(d.y), std::fabs(d.z)));
+    const double far = (std::fabs(oc.x) + std::fabs(oc.y) + std::fabs(oc.z) + e.x + e.y + e.z) / dmax;
+    const double half = 0.5 * std::min(double(s.length), far);
+    const Vec3 h = half * d;        // half of the segment
+    const Vec3 mc = oc + h;         // its midpoint, relative to the box centre
+    const double ahx = std::fabs(h.x), ahy = std::fabs(h.y), ahz = std::fabs(h.z);
+    if (std::fabs(mc.x) > e.x + ahx || std::fabs(mc.y) > e.y + ahy || std::fabs(mc.z) > e.z + ahz) return false;
+    // Rounding in the cross products is ~1e-16 of these magnitudes, far inside m.
+    if (std::fabs(mc.y * h.z - mc.z * h.y) > e.y * ahz + e.z * ahy) return false;
+    if (std::fabs(mc.z * h.x - mc.x * h.z) > e.x * ahz + e.z * ahx) return false;
+    if (std::fabs(mc.x * h.y - mc.y * h.x) > e.x * ahy + e.y * ahx) return false;
+    return true;
+}
+
+bool MayMeet(const Segment &s, const Hull &hull) {
+    if (!MayMeet(s, hull.box)) return false;
+    if (!hull.hasCapsule) return true;
+    const Capsule &c = hull.capsule;
+    const double m = SegmentMargin(s, Centre(hull.box), HalfExtent(hull.box));
+    const double reach = c.radius + m;
+    const Vec3 o = Origin(s), d = Direction(s), axis = c.b - c.a;
+    // Only the part of the ray within reach of the capsule's axis matters; clipping an
+    // unbounded ray there keeps the arithmetic finite.
+    const double dn = Norm(d);
+    const double far = (Norm(o - c.a) + Norm(axis) + reach) / dn * (1.0 + 1e-9);
+    const double length = std::min(double(s.length), far);
+    const double dist = SegmentSegmentDistance(o, length * d, c.a, axis);
+    return dist <= reach;
+}
+
+}  // namespace povrayfc

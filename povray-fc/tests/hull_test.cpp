@@ -1,0 +1,187 @@
+// Tests for segments and hulls: a stored (float) segment never misses a hull its traced
+// (double) ray touches, checked against long-double references on random input.
+#include <cmath>
+#include <limits>
+#include <random>
+
+#include <gtest/gtest.h>
+
+#include "povrayfc/hull.h"
+#include "povrayfc/segment.h"
+
+using namespace povrayfc;
+
+namespace {
+
+const double kInf = std::numeric_limits<double>::infinity();
+const double kNaN = std::numeric_limits<double>::quiet_NaN();
+
+Segment Seg(Vec3 o, Vec3 d, double t) {
+    const double od[3] = {o.x, o.y, o.z}, dd[3] = {d.x, d.y, d.z};
+    Segment s;
+    EXPECT_TRUE(MakeSegment(od, dd, t, s));
+    return s;
+}
+
+// Exact slab test of the double ray against the closed box, in long double.
+bool ExactMeetsBox(Vec3 o, Vec3 d, double tmax, const Box &b) {
+    long double t0 = 0, t1 = tmax;
+    for (int a = 0; a < 3; ++a) {
+        if (d[a] == 0) {
+            if (o[a] < b.lo[a] || o[a] > b.hi[a]) return false;
+            continue;
+        }
+        long double ta = ((long double)b.lo[a] - o[a]) / d[a], tb = ((long double)b.hi[a] - o[a]) / d[a];
+        if (ta > tb) std::swap(ta, tb);
+        t0 = std::max(t0, ta);
+        t1 = std::min(t1, tb);
+        if (t0 > t1) return false;
+    }
+    return true;
+}
+
+// Distance between the double ray segment and the capsule axis in long double: ternary
+// search along the ray (the distance to a segment is convex along a line).
+long double ExactCapsuleDistance(Vec3 o, Vec3 d, double tmax, const Capsule &c) {
+    auto point = [](Vec3 p, Vec3 v, long double t, long double out[3]) {
+        for (int a = 0; a < 3; ++a) out[a] = p[a] + t * v[a];
+    };
+    const Vec3 axis = c.b - c.a;
+    // Squared distance from the ray point at s to the axis segment, by exact projection.
+    auto distToAxis = [&](long double s) {
+        long double p[3], len2 = 0, dot = 0;
+        point(o, d, s, p);
+        for (int a = 0; a < 3; ++a) {
+            len2 += (long double)axis[a] * axis[a];
+            dot += (p[a] - c.a[a]) * axis[a];
+        }
+        long double u = len2 > 0 ? dot / len2 : 0;
+        u = std::max((long double)0, std::min((long double)1, u));
+        long double q[3], r = 0;
+        point(c.a, axis, u, q);
+        for (int a = 0; a < 3; ++a) r += (p[a] - q[a]) * (p[a] - q[a]);
+        return r;
+    };
+    long double lo = 0, hi = tmax;
+    for (int i = 0; i < 200; ++i) {
+        long double m1 = lo + (hi - lo) / 3, m2 = hi - (hi - lo) / 3;
+        if (distToAxis(m1) < distToAxis(m2)) hi = m2; else lo = m1;
+    }
+    return std::sqrt(distToAxis((lo + hi) / 2));
+}
+
+TEST(Segment, RejectsWhatItCannotStoreConservatively) {
+    const double o[3] = {0, 0, 0}, d[3] = {1, 0, 0};
+    const double nanO[3] = {kNaN, 0, 0}, infD[3] = {kInf, 0, 0}, zero[3] = {0, 0, 0}, tiny[3] = {1e-30, 0, 0};
+    Segment s;
+    // Invariant: rays whose float copy could drift by more than the margin are refused.
+    EXPECT_FALSE(MakeSegment(nanO, d, 1.0, s));
+    EXPECT_FALSE(MakeSegment(o, infD, 1.0, s));
+    EXPECT_FALSE(MakeSegment(o, zero, 1.0, s));
+    EXPECT_FALSE(MakeSegment(o, tiny, 1.0, s));
+    EXPECT_FALSE(MakeSegment(o, d, kNaN, s));
+    EXPECT_FALSE(MakeSegment(o, d, -1.0, s));
+    ASSERT_TRUE(MakeSegment(o, d, kInf, s));
+    EXPECT_EQ(s.length, std::numeric_limits<float>::infinity());
+}
+
+TEST(Segment, LengthIsRoundedUp) {
+    std::mt19937_64 rng(7);
+    std::uniform_real_distribution<double> u(0.0, 100.0);
+    const double o[3] = {0, 0, 0}, d[3] = {0, 1, 0};
+    for (int i = 0; i < 10000; ++i) {
+        const double t = u(rng);
+        Segment s;
+        ASSERT_TRUE(MakeSegment(o, d, t, s));
+        // Invariant: the stored segment covers the whole traced one.
+        EXPECT_GE(double(s.length), t);
+    }
+}
+
+TEST(Hull, BoxHandPicked) {
+    const Hull unit = MakeHull(Box{Vec3{0, 0, 0}, Vec3{1, 1, 1}});
+    EXPECT_TRUE(MayMeet(Seg({-1, 0.5, 0.5}, {1, 0, 0}, 10), unit));
+    EXPECT_FALSE(MayMeet(Seg({-1, 0.5, 0.5}, {1, 0, 0}, 0.5), unit));  // stops short
+    EXPECT_TRUE(MayMeet(Seg({-1, 0.5, 0.5}, {1, 0, 0}, 1.0), unit));   // ends on the face
+    EXPECT_FALSE(MayMeet(Seg({-1, 2, 0.5}, {1, 0, 0}, kInf), unit));   // passes beside
+    EXPECT_TRUE(MayMeet(Seg({-1, 1, 1}, {1, 0, 0}, kInf), unit));      // grazes an edge
+    EXPECT_FALSE(MayMeet(Seg({2, 0.5, 0.5}, {1, 0, 0}, kInf), unit));  // points away
+    EXPECT_FALSE(MayMeet(Seg({0.5, 0.5, 0.5}, {1, 0, 0}, 1), Hull()));  // empty hull
+    EXPECT_TRUE(MayMeet(Seg({0.5, 0.5, 0.5}, {0, 0, 1}, 0), unit));    // a point inside
+}
+
+TEST(Hull, RandomSegmentsNeverMissABoxTheyTouch) {
+    std::mt19937_64 rng(11);
+    std::uniform_real_distribution<double> pos(-50, 50), dir(-1, 1), len(0, 80), size(0.001, 10);
+    int touching = 0, extra = 0;
+    for (int i = 0; i < 200000; ++i) {
+        Vec3 lo{pos(rng), pos(rng), pos(rng)};
+        Box b{lo, lo + Vec3{size(rng), size(rng), size(rng)}};
+        Vec3 o{pos(rng), pos(rng), pos(rng)};
+        Vec3 target = (i % 2) ? Vec3{b.lo.x, pos(rng), b.hi.z} : 0.5 * (b.lo + b.hi);  // aim at faces/edges
+        Vec3 d = target - o;
+        if (i % 5 == 0) d = Vec3{dir(rng), dir(rng), dir(rng)};
+        if (i % 7 == 0) d.y = 0;
+        const double t = (i % 3 == 0) ? kInf : len(rng) / 40.0;
+        Segment s;
+        const double od[3] = {o.x, o.y, o.z}, dd[3] = {d.x, d.y, d.z};
+        if (!MakeSegment(od, dd, t, s)) continue;
+        const bool exact = ExactMeetsBox(o, d, t, b);
+        const bool stored = MayMeet(s, MakeHull(b));
+        // Invariant: never a miss; at most a hair of over-inclusion.
+        if (exact) {
+            ++touching;
+            ASSERT_TRUE(stored) << i;
+        } else {
+            extra += stored;
+        }
+    }
+    EXPECT_GT(touching, 50000);
+    EXPECT_LT(extra, 200000 / 100);
+}
+
+TEST(Hull, RandomSegmentsNeverMissACapsuleTheyTouch) {
+    std::mt19937_64 rng(13);
+    std::uniform_real_distribution<double> pos(-20, 20), unit(-1, 1), rad(0.01, 3);
+    int touching = 0, boxOnly = 0, capsuleRejects = 0;
+    for (int i = 0; i < 20000; ++i) {
+        Capsule c;
+        c.a = Vec3{pos(rng), pos(rng), pos(rng)};
+        c.b = (i % 4 == 0) ? c.a : c.a + Vec3{3 * unit(rng), 3 * unit(rng), 3 * unit(rng)};
+        c.radius = rad(rng);
+        Box box;
+        box.Grow(c.a - Vec3{c.radius, c.radius, c.radius});
+        box.Grow(c.b + Vec3{c.radius, c.radius, c.radius});
+        box.Grow(c.a + Vec3{c.radius, c.radius, c.radius});
+        box.Grow(c.b - Vec3{c.radius, c.radius, c.radius});
+        Vec3 o{pos(rng), pos(rng), pos(rng)};
+        // Aim close to the surface: through a point at about the radius from the axis.
+        Vec3 onAxis = c.a + (0.5 + 0.5 * unit(rng)) * (c.b - c.a);
+        Vec3 off{unit(rng), unit(rng), unit(rng)};
+        const double offLen = std::sqrt(off.x * off.x + off.y * off.y + off.z * off.z);
+        Vec3 target = onAxis + (c.radius * (1.0 + 0.02 * unit(rng)) / offLen) * off;
+        Vec3 d = target - o;
+        if (i % 9 == 0) d = (c.b - c.a);  // parallel to the axis
+        const double t = (i % 3 == 0) ? kInf : 2.0 * (0.5 + 0.5 * unit(rng));
+        Segment s;
+        const double od[3] = {o.x, o.y, o.z}, dd[3] = {d.x, d.y, d.z};
+        if (!MakeSegment(od, dd, t, s)) continue;
+        const double tt = std::isinf(t) ? 1e3 : t;
+        const bool exact = ExactCapsuleDistance(o, d, tt, c) <= c.radius * (1 - 1e-12) && ExactMeetsBox(o, d, tt, box);
+        const Hull h = MakeHull(box, c);
+        const bool stored = MayMeet(s, h);
+        if (exact) {
+            ++touching;
+            // Invariant: a ray that reaches into the capsule is never missed.
+            ASSERT_TRUE(stored) << i;
+        }
+        if (MayMeet(s, MakeHull(box)) && !stored) ++capsuleRejects;
+        boxOnly += MayMeet(s, MakeHull(box));
+    }
+    EXPECT_GT(touching, 1000);
+    // The capsule refines the box: some rays through the box miss the capsule.
+    EXPECT_GT(capsuleRejects, 100);
+    EXPECT_GT(boxOnly, touching);
+}
+
+}  // namespace
