@@ -35,6 +35,8 @@ class BlockTracer {
     // every pixel and no other call is needed for this block.
     bool Begin(std::uint32_t serial, int left, int top, int right, int bottom);
     void StoredPixel(int x, int y, float rgbft[5]) const;
+    // After Begin() returned true: the front end already holds this block's pixels.
+    bool StoredBlockIsShown() const { return plan_->skipStoredBlocks; }
 
     // The stored colour of the clean sample at exactly (x, y), kept for this frame too.
     // False when there is none: the caller traces the sample.

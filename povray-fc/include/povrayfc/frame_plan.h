@@ -36,6 +36,9 @@ struct FramePlan {
     SampleStore *store = nullptr;
     FrameCounters *counters = nullptr;
     DirtyMask *tracedMask = nullptr;   // pixels traced this frame, when a mask is wanted
+    // A block reused whole still holds the same pixels in the front end's image: it is
+    // reported done without sending them (no pixel message, no re-encoding).
+    bool skipStoredBlocks = false;
 };
 
 }  // namespace povrayfc

@@ -22,6 +22,9 @@ struct FrameSetup {
     bool mosaicPreview = false;   // +SP/+EP: traces pixels at several sizes
     bool continueTrace = false;   // +C
     bool sceneCameraOverride = false;  // camera set by the front end, not the scene
+    // The front end shows no display, so its image keeps every pixel it was last sent:
+    // blocks reused whole need not be sent again.
+    bool frontEndKeepsImage = false;
     int renderThreads = 1;        // +WT: effects with per-thread random sequences are
                                   // reproducible only with one
 

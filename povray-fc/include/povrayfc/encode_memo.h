@@ -1,0 +1,61 @@
+// EncodeMemo: the encoded value of every pixel of the image the front end writes each
+// frame, kept so that a pixel whose value did not change is not encoded again.
+//
+// POV-Ray encodes the whole image for every frame it writes (gamma curve with powf per
+// channel, clipping, quantising); with frame coherence most pixels are reused unchanged
+// and that encoding became about a fifth of a coherent frame's time. The memo keys each
+// pixel by the exact bits of its input values: the same input under the same settings
+// gives the same output, so the file is byte for byte what POV-Ray would write. Only for
+// writes without dithering (a dithered pixel also depends on its neighbours' errors).
+//
+// Not thread-safe: the front end writes images from one thread; a call from another
+// thread than the one that last enabled the memo bypasses it.
+#ifndef POVRAYFC_ENCODE_MEMO_H
+#define POVRAYFC_ENCODE_MEMO_H
+
+#include <cstdint>
+#include <thread>
+#include <vector>
+
+namespace povrayfc {
+
+class EncodeMemo {
+  public:
+    // The process-wide memo, or nullptr when it is off (fc off), used from another
+    // thread, or the image is not the one it remembers (then it starts remembering
+    // `image`, width x height, encoded with `settings`, a hash of everything else the
+    // encoding depends on).
+    static EncodeMemo *For(const void *image, unsigned width, unsigned height, std::uint64_t settings);
+    // Turned on for the frames frame coherence renders (front end, before each write).
+    static void SetEnabled(bool enabled);
+
+    // The outputs remembered for pixel (x, y) when its inputs are bit for bit `in`.
+    bool Find(unsigned x, unsigned y, const float in[4], unsigned out[4]) const {
+        const std::size_t i = std::size_t(y) * width_ + x;
+        if (x >= width_ || y >= height_ || !kept_[i] || !Same(&in_[i * 4], in)) return false;
+        for (int k = 0; k < 4; ++k) out[k] = out_[i * 4 + k];
+        return true;
+    }
+    void Keep(unsigned x, unsigned y, const float in[4], const unsigned out[4]);
+
+  private:
+    static bool Same(const float *a, const float *b) {
+        // Bits, not values: -0 and +0, or two NaNs, need not encode alike.
+        const std::uint32_t *p = reinterpret_cast<const std::uint32_t *>(a);
+        const std::uint32_t *q = reinterpret_cast<const std::uint32_t *>(b);
+        return ((p[0] ^ q[0]) | (p[1] ^ q[1]) | (p[2] ^ q[2]) | (p[3] ^ q[3])) == 0;
+    }
+
+    bool enabled_ = false;
+    std::thread::id owner_;
+    const void *image_ = nullptr;
+    unsigned width_ = 0, height_ = 0;
+    std::uint64_t settings_ = 0;
+    std::vector<float> in_;            // 4 per pixel
+    std::vector<std::uint8_t> kept_;   // per pixel: in_ and out_ hold a value
+    std::vector<std::uint16_t> out_;   // 4 per pixel (POV-Ray encodes to at most 16 bits)
+};
+
+}  // namespace povrayfc
+
+#endif

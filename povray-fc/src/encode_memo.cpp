@@ -1,0 +1,53 @@
+// EncodeMemo: the process-wide memo and its (re)initialisation.
+#include "povrayfc/encode_memo.h"
+
+#include <cstring>
+
+namespace povrayfc {
+
+namespace {
+EncodeMemo &Memo() {
+    static EncodeMemo memo;
+    return memo;
+}
+}  // namespace
+
+void EncodeMemo::SetEnabled(bool enabled) {
+    EncodeMemo &m = Memo();
+    m.enabled_ = enabled;
+    m.owner_ = std::this_thread::get_id();
+    if (!enabled) {
+        m.image_ = nullptr;
+        m.in_.clear();
+        m.in_.shrink_to_fit();
+        m.out_.clear();
+        m.out_.shrink_to_fit();
+        m.kept_.clear();
+        m.kept_.shrink_to_fit();
+    }
+}
+
+EncodeMemo *EncodeMemo::For(const void *image, unsigned width, unsigned height, std::uint64_t settings) {
+    EncodeMemo &m = Memo();
+    if (!m.enabled_ || m.owner_ != std::this_thread::get_id()) return nullptr;
+    if (m.image_ != image || m.width_ != width || m.height_ != height || m.settings_ != settings) {
+        m.image_ = image;
+        m.width_ = width;
+        m.height_ = height;
+        m.settings_ = settings;
+        m.in_.assign(std::size_t(width) * height * 4, 0.0f);
+        m.out_.assign(std::size_t(width) * height * 4, 0);
+        m.kept_.assign(std::size_t(width) * height, 0);
+    }
+    return &m;
+}
+
+void EncodeMemo::Keep(unsigned x, unsigned y, const float in[4], const unsigned out[4]) {
+    if (x >= width_ || y >= height_) return;
+    const std::size_t i = std::size_t(y) * width_ + x;
+    std::memcpy(&in_[i * 4], in, 4 * sizeof(float));
+    kept_[i] = 1;
+    for (int k = 0; k < 4; ++k) out_[i * 4 + k] = std::uint16_t(out[k]);
+}
+
+}  // namespace povrayfc
