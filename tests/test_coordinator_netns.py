@@ -1,8 +1,9 @@
 """fc-master on several real PVM hosts: network namespaces with their own sshd and pvmd.
 
-scripts/pvm-netns-hosts.sh creates hosts fch1..fch3 (one machine, separate network
-namespaces, host names and PVM_TMPs); the tests start the master pvmd as fcmaster, add hosts
-with the PVM console, and run fc-master in the running virtual machine. Needs root,
+scripts/pvm-netns-hosts.sh creates three hosts (one machine, separate network namespaces,
+host names and PVM_TMPs): fch1..fch3 with a master name fcmaster, or other names when another
+cluster is up (its `env` says which); the tests start the master pvmd under the master name,
+add hosts with the PVM console, and run fc-master in the running virtual machine. Needs root,
 iproute2 and openssh-server; skipped otherwise.
 """
 import os
@@ -50,10 +51,12 @@ def program(pid):
 
 @pytest.fixture(scope="module")
 def netns_hosts(tmp_path_factory):
-    """Hosts fch1..fch3 for this module; their environment (PVM_RSH, PVM_TMP, ...)."""
+    """Three hosts for this module; their environment (PVM_RSH, PVM_TMP, PVM_NETNS_HOSTS...).
+
+    A fresh state directory: `down` at the end removes these hosts and nothing else, so a
+    user's cluster or another test run's stays up."""
     state = str(tmp_path_factory.mktemp("pvm-netns") / "state")
     env = dict(os.environ, PVM_NETNS_STATE=state)
-    subprocess.run([SCRIPT, "down"], env=env, capture_output=True)
     r = subprocess.run([SCRIPT, "up", "3"], env=env, capture_output=True, text=True, timeout=60)
     assert r.returncode == 0, r.stderr
     exports = {}
@@ -157,7 +160,7 @@ def test_all_hosts_render(coordinator, coordinator_references, vm, tmp_path, div
     assert s["virtual_machine"] == "running" and s["hosts_used"] == 4
     # Invariant: every host got slaves (one per core) and rendered something.
     names = {h["name"]: h for h in s["hosts"]}
-    assert set(names) == {"fcmaster"} | set(vm.hosts)
+    assert set(names) == {vm.env["PVM_NETNS_MASTER"]} | set(vm.hosts)
     for h in names.values():
         assert h["slaves"] >= 1 and h["units"] >= 1, s["hosts"]
     # No slave is left on any host once the master is done.
@@ -171,41 +174,43 @@ def test_all_hosts_render(coordinator, coordinator_references, vm, tmp_path, div
 def test_crashed_host_work_is_requeued(coordinator, coordinator_references, vm, tmp_path):
     vm.add(vm.hosts, 4)
     out = tmp_path / "out"
+    crashed = vm.hosts[1]
     p = coordinator.start(["--no-fc", "--timeout", "5", "--division", "sequence", SCENE] +
                           SLOW + ["-o", str(out)], env=vm.env)
     deadline = time.time() + 60
     while not any(program(x) == "povray-fc" or program(x) == "povray"
-                  for x in netns_pids("fch2")):
-        assert time.time() < deadline and p.poll() is None, "no renderer on fch2"
+                  for x in netns_pids(crashed)):
+        assert time.time() < deadline and p.poll() is None, "no renderer on " + crashed
         time.sleep(0.05)
     time.sleep(0.5)
     # The host crashes: its pvmd, slaves and renderers vanish at once.
-    for pid in netns_pids("fch2"):
+    for pid in netns_pids(crashed):
         if program(pid) != "sshd":
             os.kill(pid, signal.SIGKILL)
     err = finish(coordinator, p)
     assert p.returncode == 0, err + coordinator.trace()
     # Invariant: every frame of the crashed host arrives, from another host. (Whether the
-    # master first times the host out, "on fch2 was silent", or an idle slave duplicates
+    # master first times the host out, "on <host> was silent", or an idle slave duplicates
     # its unit and finishes it first depends on timing, so neither message is required.)
     assert_same(out, coordinator_references.frames(SCENE, SLOW))
 
 
 def test_host_added_while_rendering(coordinator, coordinator_references, vm, tmp_path):
-    vm.add(["fch1"], 2)
+    first, late = vm.hosts[0], vm.hosts[2]
+    vm.add([first], 2)
     out, stats = tmp_path / "out", tmp_path / "stats.json"
     p = coordinator.start(["--no-fc", "--division", "frame", "--stats", str(stats), SCENE] +
                           SLOW + ["-o", str(out)], env=vm.env)
     time.sleep(1.0)
     assert p.poll() is None
-    vm.console(["add fch3"])
+    vm.console(["add " + late])
     err = finish(coordinator, p)
     assert p.returncode == 0, err + coordinator.trace()
-    assert "host fch3 joined" in err
+    assert "host %s joined" % late in err
     assert_same(out, coordinator_references.frames(SCENE, SLOW))
     hosts = {h["name"]: h for h in coordinator_stats(stats)["hosts"]}
     # Invariant: a host added while rendering gets slaves and work.
-    assert hosts["fch3"]["units"] >= 1, hosts
+    assert hosts[late]["units"] >= 1, hosts
 
 
 def test_private_machine_from_hostfile(coordinator, coordinator_references, netns_hosts,
