@@ -63,11 +63,15 @@ int main(int argc, char **argv) {
     const std::vector<Ray> rays = SceneRays(n);
 
     std::vector<Segment> segments;
+    std::vector<std::uint8_t> fanOf;
+    FanApexes apexes;
     segments.reserve(n);
+    fanOf.reserve(n);
     SampleRecorder recorder;
     const double record = MedianNs(n, [&] {
         segments.clear();
-        recorder.Begin(segments);
+        fanOf.clear();
+        recorder.Begin(segments, fanOf, apexes);
         StartRecordingRays(recorder);
         for (const Ray &r : rays) RecordRaySegment(r.o, r.d, r.t);
         StopRecordingRays();

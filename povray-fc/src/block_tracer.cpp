@@ -22,11 +22,71 @@ std::uint32_t KeyHash(double x, double y) {
     return std::uint32_t(h >> 32);
 }
 
-bool SampleIsDirty(const StoredSample &s, const BlockRecord &record, const ChangeIndex &changes) {
+// Which hulls each fan of a record may reach: fanHulls[f] has bit h set when fan f's cone
+// may meet hull h (all bits when there are too many hulls to say). A segment of fan f
+// then needs testing against those hulls only.
+using HullMask = std::uint64_t;
+constexpr HullMask kAllHulls = ~HullMask(0);
+
+bool FansHit(const BlockRecord &record, const ChangeIndex &changes, HullMask *fanHulls) {
+    bool any = false;
+    Hull all;
+    all.box = changes.Bounds();
+    const bool perHull = !changes.HasGrid() && changes.HullCount() <= 64;
+    for (std::size_t f = 0; f < record.fans.fans.size(); ++f) {
+        const SegmentFan &fan = record.fans.fans[f];
+        HullMask mask = 0;
+        if (FanMayMeet(fan, all)) {
+            if (!perHull) {
+                mask = kAllHulls;
+            } else {
+                for (std::size_t h = 0; h < changes.HullCount(); ++h)
+                    if (FanMayMeet(fan, changes.Hulls()[h])) mask |= HullMask(1) << h;
+            }
+        }
+        fanHulls[f] = mask;
+        any |= mask != 0;
+    }
+    return any;
+}
+
+// Whether a change may come near the loose segments of finite length (their box, widened
+// by the rounding margin of any segment inside it).
+bool LooseBoxHit(const BlockRecord &record, const ChangeIndex &changes) {
+    const Box &b = record.fans.looseBox;
+    if (b.Empty()) return false;
+    const Box &u = changes.Bounds();
+    if (!b.IsFinite() || !u.IsFinite()) return true;
+    double scale = 0;
+    for (int a = 0; a < 3; ++a)
+        scale = std::max({scale, std::fabs(b.lo[a]), std::fabs(b.hi[a]), std::fabs(u.lo[a]), std::fabs(u.hi[a])});
+    const double m = 0x1p-16 * scale + 1e-30;  // > 2 * SegmentMargin for any segment in b, hull in u
+    return b.lo.x <= u.hi.x + m && u.lo.x <= b.hi.x + m && b.lo.y <= u.hi.y + m && u.lo.y <= b.hi.y + m &&
+           b.lo.z <= u.hi.z + m && u.lo.z <= b.hi.z + m;
+}
+
+bool SampleIsDirty(const StoredSample &s, const BlockRecord &record, const ChangeIndex &changes,
+                   const HullMask *fanHulls, bool looseBoxHit) {
     if (s.segmentCount == StoredSample::kEverything) return true;
     const Segment *segment = record.segments.data() + s.firstSegment;
-    for (std::uint32_t i = 0; i < s.segmentCount; ++i)
-        if (changes.MayMeet(segment[i])) return true;
+    const std::uint8_t *fanOf = record.fans.fanOf.data() + s.firstSegment;
+    for (std::uint32_t i = 0; i < s.segmentCount; ++i) {
+        if (fanOf[i] == BlockFans::kLoose) {
+            if (!looseBoxHit && std::isfinite(segment[i].length)) continue;
+            if (changes.MayMeet(segment[i])) return true;
+            continue;
+        }
+        HullMask mask = fanHulls[fanOf[i]];
+        if (mask == 0) continue;
+        // The union test first: it rejects most segments of a wide fan at the price of one.
+        if (!changes.MayMeetUnion(segment[i])) continue;
+        if (mask == kAllHulls) {
+            if (changes.MayMeet(segment[i])) return true;
+            continue;
+        }
+        for (; mask; mask &= mask - 1)
+            if (MayMeet(segment[i], changes.Hulls()[std::size_t(__builtin_ctzll(mask))])) return true;
+    }
     return false;
 }
 
@@ -47,6 +107,9 @@ bool BlockTracer::Begin(std::uint32_t serial, int left, int top, int right, int 
     next_.opaque = !record_;
     next_.samples.clear();
     next_.segments.clear();
+    next_.apexes.Clear();
+    nextFanOf_.clear();
+    tracedSegments_.clear();
     const std::size_t area = std::size_t(right - left + 1) * std::size_t(bottom - top + 1);
     next_.pixels.assign(area * 5, 0.0f);
     tracedPixels_.assign(area, 0);
@@ -68,13 +131,19 @@ bool BlockTracer::Begin(std::uint32_t serial, int left, int top, int right, int 
         return false;
     }
 
-    // The block's clean samples: those none of whose rays may meet a change.
+    // The block's clean samples: those none of whose rays may meet a change. Most blocks
+    // are far from every change, which the cones around their segments show at once.
     const std::size_t n = old_->samples.size();
-    oldDirty_.resize(n);
+    HullMask fanHulls[BlockFans::kMaxFans] = {0};
+    const bool fansHit = FansHit(*old_, *plan.changes, fanHulls);
+    const bool looseHit = LooseBoxHit(*old_, *plan.changes);
     bool anyDirty = false;
-    for (std::size_t i = 0; i < n; ++i) {
-        oldDirty_[i] = SampleIsDirty(old_->samples[i], *old_, *plan.changes);
-        anyDirty |= oldDirty_[i] != 0;
+    if (fansHit || looseHit || old_->fans.looseUnbounded || old_->hasEverything) {
+        oldDirty_.resize(n);
+        for (std::size_t i = 0; i < n; ++i) {
+            oldDirty_[i] = SampleIsDirty(old_->samples[i], *old_, *plan.changes, fanHulls, looseHit);
+            anyDirty |= oldDirty_[i] != 0;
+        }
     }
     if (!anyDirty) {
         plan.counters->reusedPixels += area;
@@ -83,6 +152,8 @@ bool BlockTracer::Begin(std::uint32_t serial, int left, int top, int right, int 
         return true;
     }
     IndexOldSamples();
+    // Reused segments keep their fan numbers, so the new record starts from the old apexes.
+    next_.apexes = old_->apexes;
     return false;
 }
 
@@ -130,6 +201,11 @@ bool BlockTracer::Reuse(double x, double y, float rgbft[5]) {
         kept.firstSegment = std::uint32_t(next_.segments.size());
         const Segment *first = old_->segments.data() + s.firstSegment;
         next_.segments.insert(next_.segments.end(), first, first + s.segmentCount);
+        // Recorded fans keep their numbers (the new record starts from the old apexes);
+        // the leftover fan is built anew at End.
+        const std::uint8_t *fans = old_->fans.fanOf.data() + s.firstSegment;
+        for (std::uint32_t k = 0; k < s.segmentCount; ++k)
+            nextFanOf_.push_back(fans[k] < old_->apexes.count ? fans[k] : BlockFans::kLoose);
     }
     next_.samples.push_back(kept);
     ++reusedSamples_;
@@ -138,7 +214,7 @@ bool BlockTracer::Reuse(double x, double y, float rgbft[5]) {
 
 void BlockTracer::BeginSample() {
     if (!active_ || !record_) return;
-    recorder_.Begin(next_.segments);
+    recorder_.Begin(next_.segments, nextFanOf_, next_.apexes);
     StartRecordingRays(recorder_);
 }
 
@@ -153,11 +229,12 @@ void BlockTracer::EndSample(double x, double y, const float rgbft[5]) {
     s.y = y;
     std::copy(rgbft, rgbft + 5, s.colour);
     if (recorder_.Everything()) {
-        next_.segments.resize(recorder_.First());  // its segments say nothing
+        recorder_.Discard();  // its segments say nothing
         s.segmentCount = StoredSample::kEverything;
     } else {
         s.firstSegment = std::uint32_t(recorder_.First());
         s.segmentCount = std::uint32_t(recorder_.Count());
+        tracedSegments_.emplace_back(recorder_.First(), recorder_.Count());
     }
     next_.samples.push_back(s);
 }
@@ -183,18 +260,33 @@ void BlockTracer::End() {
     // A pixel counts as traced when one of its own samples was, or when its colour
     // changed: with anti-aliasing a pixel can change through a neighbour's sample alone
     // (AA method 1 decides to supersample from the neighbours; method 2 shares corners).
+    const int w = next_.Width();
     if (old_) {
-        for (std::size_t i = 0; i < tracedPixels_.size(); ++i)
-            if (!tracedPixels_[i] && std::memcmp(&old_->pixels[i * 5], &next_.pixels[i * 5], 5 * sizeof(float)) != 0)
-                tracedPixels_[i] = 1;
+        changed_[0] = next_.right + 1;
+        changed_[1] = next_.bottom + 1;
+        changed_[2] = next_.left - 1;
+        changed_[3] = next_.top - 1;
+        for (std::size_t i = 0; i < tracedPixels_.size(); ++i) {
+            if (std::memcmp(&old_->pixels[i * 5], &next_.pixels[i * 5], 5 * sizeof(float)) == 0) continue;
+            tracedPixels_[i] = 1;
+            const int x = next_.left + int(i % std::size_t(w)), y = next_.top + int(i / std::size_t(w));
+            changed_[0] = std::min(changed_[0], x);
+            changed_[1] = std::min(changed_[1], y);
+            changed_[2] = std::max(changed_[2], x);
+            changed_[3] = std::max(changed_[3], y);
+        }
+    } else {
+        changed_[0] = next_.left;
+        changed_[1] = next_.top;
+        changed_[2] = next_.right;
+        changed_[3] = next_.bottom;
     }
     std::uint64_t traced = 0;
     for (std::size_t i = 0; i < tracedPixels_.size(); ++i) {
         if (!tracedPixels_[i]) continue;
         ++traced;
         if (plan.tracedMask)
-            plan.tracedMask->Set(next_.left + int(i % std::size_t(next_.Width())),
-                                 next_.top + int(i / std::size_t(next_.Width())));
+            plan.tracedMask->Set(next_.left + int(i % std::size_t(w)), next_.top + int(i / std::size_t(w)));
     }
     plan.counters->tracedPixels += traced;
     plan.counters->reusedPixels += tracedPixels_.size() - traced;
@@ -213,9 +305,30 @@ void BlockTracer::End() {
     record->samples.assign(next_.samples.begin(), next_.samples.end());
     record->segments.assign(next_.segments.begin(), next_.segments.end());
     record->pixels.assign(next_.pixels.begin(), next_.pixels.end());
+    if (record_) {
+        record->apexes = next_.apexes;
+        // Grow the old cones by what was traced anew, unless much of the block is new
+        // (cones only ever widen when grown).
+        std::size_t fresh = 0;
+        for (const auto &range : tracedSegments_) fresh += range.second;
+        if (old_ && 4 * fresh <= record->segments.size())
+            record->fans = GrowFans(old_->fans, record->segments.data(), nextFanOf_, next_.apexes, tracedSegments_);
+        else
+            record->fans = BuildFans(record->segments.data(), nextFanOf_, next_.apexes);
+        for (const StoredSample &s : record->samples)
+            record->hasEverything |= s.segmentCount == StoredSample::kEverything;
+    }
     old_ = nullptr;
     plan.store->Put(serial_, std::move(record));
     active_ = false;
+}
+
+bool BlockTracer::ChangedRect(int &left, int &top, int &right, int &bottom) const {
+    left = changed_[0];
+    top = changed_[1];
+    right = changed_[2];
+    bottom = changed_[3];
+    return left <= right && top <= bottom;
 }
 
 }  // namespace povrayfc

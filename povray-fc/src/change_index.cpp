@@ -70,6 +70,12 @@ bool ChangeIndex::MayMeet(const Segment &s) const {
     return false;
 }
 
+bool ChangeIndex::MayMeetUnion(const Segment &s) const {
+    if (hulls_.empty()) return false;
+    if (!bounds_.IsFinite()) return true;
+    return MeetsWidened(s, bounds_, 2.0 * SegmentMargin(s, Centre(bounds_), HalfExtent(bounds_)));
+}
+
 bool ChangeIndex::MayMeetThroughGrid(const Segment &s) const {
     // Where the true ray meets a hull, the stored one passes within its margin (< slack),
     // so inside that hull's widened box: in a voxel the hull was binned into.

@@ -67,6 +67,18 @@ void TraceToy(const ToyScene &scene, double x, double y, float rgbft[5]) {
     RecordRaySegment(p, up, toLight);
     rgbft[0] = float(hit->id);
     rgbft[1] = shadow ? 0.25f : 1.0f;
+    if (hit->id == 1) {
+        // The back wall is a mirror tilted up and to the side: a loose reflection ray.
+        const double r[3] = {0.3, 0.4, -0.866};
+        double rbest = 1e30;
+        const ToyBox *rhit = nullptr;
+        for (const ToyBox &b : scene.boxes) {
+            const double t = (&b == hit) ? -1 : Hit(b, p, r);
+            if (t >= 0 && t < rbest) rbest = t, rhit = &b;
+        }
+        RecordRaySegment(p, r, rhit ? rbest : 2e10);
+        rgbft[2] = rhit ? float(rhit->id) : 0.5f;
+    }
 }
 
 using Image = std::vector<float>;  // 5 floats a pixel

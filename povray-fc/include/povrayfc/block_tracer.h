@@ -48,6 +48,10 @@ class BlockTracer {
     // The block's final pixel colours, then End() stores the block.
     void SetPixel(int x, int y, const float rgbft[5]);
     void End();
+    // After End(): the part of the block the front end must be sent, when it keeps its
+    // image (StoredBlockIsShown): the box around the pixels whose colour changed, or the
+    // whole block when there was nothing to compare with. False: nothing to send.
+    bool ChangedRect(int &left, int &top, int &right, int &bottom) const;
 
     // The current block is under frame coherence (false: fc is idle this frame, and the
     // caller traces as POV-Ray always does).
@@ -67,8 +71,11 @@ class BlockTracer {
     std::vector<std::uint32_t> oldIndex_;    // open addressing: old sample index + 1, 0 = empty
     std::uint32_t oldMask_ = 0;
     BlockRecord next_;                       // the record being built for this frame
+    std::vector<std::uint8_t> nextFanOf_;    // per segment of next_: its fan
+    std::vector<std::pair<std::size_t, std::size_t>> tracedSegments_;  // (first, count) per traced sample
     std::vector<std::uint8_t> tracedPixels_; // per pixel of the block
     std::uint64_t tracedSamples_ = 0, reusedSamples_ = 0;
+    int changed_[4] = {0, 0, -1, -1};       // left, top, right, bottom of the changed pixels
     SampleRecorder recorder_;
 };
 

@@ -40,6 +40,8 @@ class ChangeIndex {
 
     // True when the ray the segment stands for may meet a changed hull.
     bool MayMeet(const Segment &s) const;
+    // True when it may meet the box around all changed hulls (a cheap first test).
+    bool MayMeetUnion(const Segment &s) const;
 
   private:
     bool MayMeetThroughGrid(const Segment &s) const;

@@ -10,38 +10,110 @@
 #ifndef POVRAYFC_RAY_RECORDING_H
 #define POVRAYFC_RAY_RECORDING_H
 
+#include <cmath>
 #include <cstddef>
+#include <cstdint>
 #include <vector>
 
 #include "povrayfc/segment.h"
 
 namespace povrayfc {
 
-// Collects the segments of one camera sample, appending to a caller's vector (a block's
-// segment list, so that a finished sample needs no copy).
+// The points a render block's segments are bundled by (see segment_fans.h): the camera
+// position its camera rays start from, and the light positions its shadow rays aim at.
+// Filled as rays are recorded; index = the bundle's fan number.
+struct FanApexes {
+    static constexpr int kMax = 8;
+    double point[kMax][3];
+    bool isOrigin[kMax];
+    int count = 0;
+
+    void Clear() { count = 0; }
+    // The fan of a segment starting at `origin`: the block's first recorded origin (its
+    // first camera ray's) is fan 0; other origins are loose.
+    std::uint8_t OriginFan(const double origin[3]) {
+        if (count == 0) {
+            Set(0, origin, true);
+            count = 1;
+        }
+        return (isOrigin[0] && Same(point[0], origin)) ? 0 : kLoose;
+    }
+    // The fan of a shadow segment aimed at `aim` (the light point it tests, as origin +
+    // depth * direction: the same light gives points a few ulps apart, hence the
+    // tolerance; how far each segment really strays from its apex is measured when the
+    // cones are built).
+    std::uint8_t AimFan(const double aim[3]) {
+        for (int i = 0; i < count; ++i)
+            if (!isOrigin[i] && Near(point[i], aim)) return std::uint8_t(i);
+        if (count == kMax) return kLoose;
+        Set(count, aim, false);
+        return std::uint8_t(count++);
+    }
+
+    static constexpr std::uint8_t kLoose = 0xff;
+
+  private:
+    static bool Same(const double *a, const double *b) { return a[0] == b[0] && a[1] == b[1] && a[2] == b[2]; }
+    static bool Near(const double *a, const double *b) {
+        const double tolerance = 1e-6 * (1.0 + std::fabs(a[0]) + std::fabs(a[1]) + std::fabs(a[2]));
+        return std::fabs(a[0] - b[0]) <= tolerance && std::fabs(a[1] - b[1]) <= tolerance &&
+               std::fabs(a[2] - b[2]) <= tolerance;
+    }
+    void Set(int i, const double *p, bool origin) {
+        point[i][0] = p[0];
+        point[i][1] = p[1];
+        point[i][2] = p[2];
+        isOrigin[i] = origin;
+    }
+};
+
+// Collects the segments of one camera sample, appending to a render block's lists (so a
+// finished sample needs no copy): each segment and its fan number.
 class SampleRecorder {
   public:
-    // Starts a sample whose segments go to the end of `segments`.
-    void Begin(std::vector<Segment> &segments) {
+    // Starts a sample whose segments go to the end of `segments` (and their fans to
+    // `fanOf`, against the block's `apexes`).
+    void Begin(std::vector<Segment> &segments, std::vector<std::uint8_t> &fanOf, FanApexes &apexes) {
         segments_ = &segments;
+        fanOf_ = &fanOf;
+        apexes_ = &apexes;
         first_ = segments.size();
         everything_ = false;
     }
     void Add(const double origin[3], const double direction[3], double tmax) {
         Segment s;
-        if (MakeSegment(origin, direction, tmax, s))
-            segments_->push_back(s);
-        else
+        if (!MakeSegment(origin, direction, tmax, s)) {
             everything_ = true;  // a ray that cannot be placed: any change must re-trace it
+            return;
+        }
+        segments_->push_back(s);
+        fanOf_->push_back(apexes_->OriginFan(origin));
+    }
+    // A shadow ray towards the light point `aim` (reaching it, or stopped short by tmax).
+    void AddAimed(const double origin[3], const double direction[3], double tmax, const double aim[3]) {
+        Segment s;
+        if (!MakeSegment(origin, direction, tmax, s)) {
+            everything_ = true;
+            return;
+        }
+        segments_->push_back(s);
+        fanOf_->push_back(apexes_->AimFan(aim));
     }
     void MarkEverything() { everything_ = true; }
 
     bool Everything() const { return everything_; }
     std::size_t First() const { return first_; }
     std::size_t Count() const { return segments_->size() - first_; }
+    // Drops the sample's segments (it depends on everything anyway).
+    void Discard() {
+        segments_->resize(first_);
+        fanOf_->resize(first_);
+    }
 
   private:
     std::vector<Segment> *segments_ = nullptr;
+    std::vector<std::uint8_t> *fanOf_ = nullptr;
+    FanApexes *apexes_ = nullptr;
     std::size_t first_ = 0;
     bool everything_ = false;
 };
@@ -70,7 +142,10 @@ class ShadowSegmentRecord {
         }
     }
     ~ShadowSegmentRecord() {
-        if (recorder_) recorder_->Add(origin_, direction_, reach_);
+        if (!recorder_) return;
+        const double aim[3] = {origin_[0] + depth_ * direction_[0], origin_[1] + depth_ * direction_[1],
+                               origin_[2] + depth_ * direction_[2]};
+        recorder_->AddAimed(origin_, direction_, reach_, aim);
     }
     ShadowSegmentRecord(const ShadowSegmentRecord &) = delete;
     ShadowSegmentRecord &operator=(const ShadowSegmentRecord &) = delete;

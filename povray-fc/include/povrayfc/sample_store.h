@@ -21,6 +21,7 @@
 #include <vector>
 
 #include "povrayfc/segment.h"
+#include "povrayfc/segment_fans.h"
 
 namespace povrayfc {
 
@@ -40,6 +41,9 @@ struct BlockRecord {
     std::vector<StoredSample> samples;
     std::vector<Segment> segments;
     std::vector<float> pixels;  // 5 floats per pixel, row by row
+    FanApexes apexes;           // the camera and light points the segments are bundled by
+    BlockFans fans;             // cones around those bundles, for a quick "nothing near"
+    bool hasEverything = false; // a sample depends on everything (any change dirties it)
 
     int Width() const { return right - left + 1; }
     int Height() const { return bottom - top + 1; }
@@ -49,7 +53,7 @@ struct BlockRecord {
     }
     std::size_t MemoryBytes() const {
         return sizeof(*this) + samples.capacity() * sizeof(StoredSample) + segments.capacity() * sizeof(Segment) +
-               pixels.capacity() * sizeof(float);
+               pixels.capacity() * sizeof(float) + fans.MemoryBytes();
     }
 };
 

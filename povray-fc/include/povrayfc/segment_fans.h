@@ -1,0 +1,76 @@
+// SegmentFans: cones that bound a render block's stored segments, so that a block far from
+// every change is found clean with a handful of tests instead of one per segment.
+//
+// A block's segments come in bundles: its camera rays all start at the camera, and its
+// shadow rays all run towards one of a few lights. Each bundle lies inside a cone with the
+// shared point as apex (the camera, or a light); a change that no cone reaches cannot meet
+// any of the bundle's segments. Segments that fit no bundle (reflections, refractions)
+// stay "loose" and are tested one by one (a flat mirror's reflections would share the
+// camera's mirror image, but finding such points cost more than it saved on Newton's
+// cradle, where most reflections come from curved chrome and brass). Which bundle a segment belongs to is known when
+// it is recorded (ray_recording.h: FanApexes), so building the cones is one pass.
+#ifndef POVRAYFC_SEGMENT_FANS_H
+#define POVRAYFC_SEGMENT_FANS_H
+
+#include <cstddef>
+#include <cstdint>
+#include <utility>
+#include <vector>
+
+#include "povrayfc/geometry.h"
+#include "povrayfc/hull.h"
+#include "povrayfc/ray_recording.h"
+#include "povrayfc/segment.h"
+
+namespace povrayfc {
+
+// Every segment of the fan lies within `slack` of the cone
+//   { apex + s * u : |u| = 1, angle(u, axis) <= halfAngle, 0 <= s <= reach }.
+// Why a cone holds a segment: seen from the apex, the directions to the points of a
+// segment sweep the arc between the directions to its two ends; the angle from the axis
+// along that arc exceeds the larger of its ends' by at most half the arc, so a cone that
+// holds both ends, widened by half the widest member arc, holds every segment (whatever
+// its width). Camera rays start at the apex and shadow rays run along a line through it,
+// so their arcs are (nearly) nil. A shadow ray that reaches its light ends at the apex
+// itself: it is held by the segment from its origin to the apex, plus the slack of how
+// far its end misses the apex.
+struct SegmentFan {
+    Vec3 apex;
+    Vec3 axis;                  // unit
+    double halfAngle = 0.0;     // radians, up to pi
+    double reach = 0.0;         // may be huge (rays that hit nothing); < 0: no segments
+    double slack = 0.0;
+    double originReach = 0.0;   // the farthest segment origin from the apex (bounds rounding)
+};
+
+struct BlockFans {
+    static constexpr std::uint8_t kLoose = FanApexes::kLoose;  // a segment in no fan
+    static constexpr std::size_t kMaxFans = FanApexes::kMax;
+
+    std::vector<SegmentFan> fans;     // by fan number; a fan without segments has reach < 0
+    std::vector<std::uint8_t> fanOf;  // per segment: its fan, or kLoose
+    std::size_t looseCount = 0;
+    Box looseBox;                     // around the loose segments of finite length
+    bool looseUnbounded = false;      // some loose segment has no end (hit nothing)
+
+    std::size_t MemoryBytes() const { return fans.capacity() * sizeof(SegmentFan) + fanOf.capacity(); }
+};
+
+// The cones around the segments of each fan, given each segment's fan (from the
+// recording) and the fans' apexes. Takes over `fanOf`.
+BlockFans BuildFans(const Segment *segments, std::vector<std::uint8_t> fanOf, const FanApexes &apexes);
+
+// The fans of a replayed block, cheaply: `old` were the fans of the segments it kept, and
+// the segments in `added` (first index, count) were traced anew; each fan only widens to
+// hold its new members. (Cones then never narrow: the caller rebuilds from scratch when
+// much of a block is new.)
+BlockFans GrowFans(const BlockFans &old, const Segment *segments, std::vector<std::uint8_t> fanOf,
+                   const FanApexes &apexes, const std::vector<std::pair<std::size_t, std::size_t>> &added);
+
+// True when a segment within `fan` may meet `hull` (conservative, including the float
+// rounding of the stored segments).
+bool FanMayMeet(const SegmentFan &fan, const Hull &hull);
+
+}  // namespace povrayfc
+
+#endif

@@ -1,0 +1,201 @@
+// SegmentFans: finding a block's bundles of segments and bounding each by a cone.
+#include "povrayfc/segment_fans.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+namespace povrayfc {
+
+namespace {
+
+// Segments longer than this are left out of the loose box (see below).
+constexpr double kLongSegment = 1e9;
+
+double Dot(const Vec3 &a, const Vec3 &b) { return a.x * b.x + a.y * b.y + a.z * b.z; }
+double Norm(const Vec3 &a) { return std::sqrt(Dot(a, a)); }
+double MaxAbs(const Vec3 &a) { return std::max(std::fabs(a.x), std::max(std::fabs(a.y), std::fabs(a.z))); }
+Vec3 Origin(const Segment &s) { return Vec3{s.origin[0], s.origin[1], s.origin[2]}; }
+Vec3 Direction(const Segment &s) { return Vec3{s.direction[0], s.direction[1], s.direction[2]}; }
+
+// The directions from the apex that hold one segment (at most two), its reach and slack.
+struct Sweep {
+    Vec3 u[2];
+    int count = 0;
+    double reach = 0, slack = 0, originReach = 0;
+    double arc = 0;  // angle between u[0] and u[1]
+};
+
+Sweep SweepOf(const Segment &s, const Vec3 &apex) {
+    Sweep w;
+    const Vec3 o = Origin(s), d = Direction(s), oa = o - apex;
+    const double no = Norm(oa), scale = 1.0 + MaxAbs(apex) + no;
+    const double near = 1e-9 * scale;
+    w.originReach = no;
+    if (no > near) w.u[w.count++] = (1.0 / no) * oa;
+    if (!std::isfinite(s.length)) {
+        w.u[w.count++] = (1.0 / Norm(d)) * d;
+        w.reach = std::numeric_limits<double>::infinity();
+        return w;
+    }
+    const Vec3 ea = oa + double(s.length) * d;
+    const double ne = Norm(ea);
+    if (ne <= 1e-6 * scale) {
+        // Ends at the apex (a shadow ray that reached its light): the segment from its
+        // origin to the apex, give or take where its end really is.
+        w.slack = ne;
+        w.reach = no;
+    } else {
+        w.u[w.count++] = (1.0 / ne) * ea;
+        w.reach = std::max(no, ne);
+    }
+    if (w.count == 0) w.slack = std::max(w.slack, no);  // a point at the apex
+    if (w.count == 2) w.arc = std::acos(std::clamp(Dot(w.u[0], w.u[1]), -1.0, 1.0));
+    return w;
+}
+
+
+
+
+// Bounds the members of one fan (indices into segments) by a cone around `apex`.
+SegmentFan Cone(const Segment *segments, const std::vector<std::uint32_t> &members, const Vec3 &apex) {
+    SegmentFan fan;
+    fan.apex = apex;
+    fan.reach = -1.0;
+    thread_local std::vector<Vec3> directions;
+    directions.clear();
+    Vec3 sum{0, 0, 0};
+    double arc = 0;
+    for (std::uint32_t i : members) {
+        const Sweep w = SweepOf(segments[i], apex);
+        for (int k = 0; k < w.count; ++k) {
+            sum = sum + w.u[k];
+            directions.push_back(w.u[k]);
+        }
+        fan.reach = std::max(fan.reach, w.reach * (1.0 + 1e-9));
+        fan.slack = std::max(fan.slack, w.slack);
+        fan.originReach = std::max(fan.originReach, w.originReach);
+        arc = std::max(arc, w.arc);
+    }
+    const double n = Norm(sum);
+    fan.axis = n > 0 ? (1.0 / n) * sum : Vec3{1, 0, 0};
+    double c = 1.0;
+    for (const Vec3 &u : directions) c = std::min(c, Dot(u, fan.axis));
+    // Rounding of the unit vectors, dot products and acos: a hair wider.
+    fan.halfAngle = std::min(M_PI, std::acos(std::clamp(c, -1.0, 1.0)) + 0.5 * arc + 1e-9);
+    fan.slack = fan.slack * (1.0 + 1e-9) + 1e-12 * (1.0 + MaxAbs(apex));
+    return fan;
+}
+
+// A loose segment joins the loose box, or marks the block as having unbounded ones.
+void AddLoose(BlockFans &fans, const Segment &s) {
+    // A ray that hit nothing ends at POV-Ray's "infinity" (BOUND_HUGE, 2e10): its box
+    // would cover everything.
+    if (!(s.length < kLongSegment)) {
+        fans.looseUnbounded = true;
+        return;
+    }
+    fans.looseBox.Grow(Origin(s));
+    fans.looseBox.Grow(Origin(s) + double(s.length) * Direction(s));
+}
+
+}  // namespace
+
+BlockFans BuildFans(const Segment *segments, std::vector<std::uint8_t> fanOf, const FanApexes &apexes) {
+    BlockFans fans;
+    fans.fanOf = std::move(fanOf);
+    const std::size_t count = fans.fanOf.size();
+    std::vector<std::vector<std::uint32_t>> members(std::size_t(apexes.count) + 1);
+    for (std::size_t i = 0; i < count; ++i) {
+        const std::uint8_t f = fans.fanOf[i];
+        members[f < apexes.count ? f : apexes.count].push_back(std::uint32_t(i));
+    }
+    for (int f = 0; f < apexes.count; ++f) {
+        const std::vector<std::uint32_t> &m = members[std::size_t(f)];
+        const double *p = apexes.point[f];
+        // An origin fan's members all carry the same float origin: the apex is that, read
+        // from a member (not rounded here: GCC 12 at -O2 drops a float round trip of two
+        // of three vector components, so the rounding must come from memory).
+        const Vec3 apex = (apexes.isOrigin[f] && !m.empty()) ? Origin(segments[m[0]]) : Vec3{p[0], p[1], p[2]};
+        fans.fans.push_back(Cone(segments, m, apex));
+    }
+    // The rest (reflections, refractions: they share no point) is tested segment by
+    // segment; the box around its finite segments spares even that when no change comes
+    // near it.
+    for (std::uint32_t i : members.back()) AddLoose(fans, segments[i]);
+    for (std::size_t i = 0; i < count; ++i) {
+        if (fans.fanOf[i] >= fans.fans.size()) fans.fanOf[i] = BlockFans::kLoose;
+        fans.looseCount += fans.fanOf[i] == BlockFans::kLoose;
+    }
+    return fans;
+}
+
+BlockFans GrowFans(const BlockFans &old, const Segment *segments, std::vector<std::uint8_t> fanOf,
+                   const FanApexes &apexes, const std::vector<std::pair<std::size_t, std::size_t>> &added) {
+    BlockFans fans;
+    fans.fanOf = std::move(fanOf);
+    fans.fans = old.fans;
+    fans.looseBox = old.looseBox;
+    fans.looseUnbounded = old.looseUnbounded;
+    fans.fans.resize(std::size_t(apexes.count));  // fans new to this block start empty
+    for (std::size_t f = old.fans.size(); f < fans.fans.size(); ++f) fans.fans[f].reach = -1.0;
+    std::vector<std::vector<std::uint32_t>> fresh(fans.fans.size());
+    for (const auto &range : added)
+        for (std::size_t i = range.first; i < range.first + range.second; ++i) {
+            const std::uint8_t f = fans.fanOf[i];
+            if (f < fans.fans.size()) {
+                fresh[f].push_back(std::uint32_t(i));
+            } else {
+                fans.fanOf[i] = BlockFans::kLoose;
+                AddLoose(fans, segments[i]);
+            }
+        }
+    for (std::size_t f = 0; f < fans.fans.size(); ++f) {
+        SegmentFan &fan = fans.fans[f];
+        if (fresh[f].empty()) continue;
+        if (fan.reach < 0) {
+            const double *p = apexes.point[f];
+            fan = Cone(segments, fresh[f], apexes.isOrigin[f] ? Origin(segments[fresh[f][0]]) : Vec3{p[0], p[1], p[2]});
+            continue;
+        }
+        for (std::uint32_t i : fresh[f]) {
+            const Sweep w = SweepOf(segments[i], fan.apex);
+            for (int k = 0; k < w.count; ++k) {
+                const double angle = std::acos(std::clamp(Dot(w.u[k], fan.axis), -1.0, 1.0));
+                fan.halfAngle = std::min(M_PI, std::max(fan.halfAngle, angle + 0.5 * w.arc + 1e-9));
+            }
+            fan.reach = std::max(fan.reach, w.reach * (1.0 + 1e-9));
+            fan.slack = std::max(fan.slack, w.slack * (1.0 + 1e-9) + 1e-12 * (1.0 + MaxAbs(fan.apex)));
+            fan.originReach = std::max(fan.originReach, w.originReach);
+        }
+    }
+    for (std::size_t i = 0; i < fans.fanOf.size(); ++i) {
+        if (fans.fanOf[i] >= fans.fans.size()) fans.fanOf[i] = BlockFans::kLoose;
+        fans.looseCount += fans.fanOf[i] == BlockFans::kLoose;
+    }
+    return fans;
+}
+
+bool FanMayMeet(const SegmentFan &fan, const Hull &hull) {
+    if (fan.reach < 0) return false;  // no segments
+    const Box &b = hull.box;
+    if (b.Empty()) return false;
+    if (!b.IsFinite()) return true;
+    const Vec3 c = 0.5 * (b.lo + b.hi), e = 0.5 * (b.hi - b.lo);
+    const double h = std::max(e.x, std::max(e.y, e.z));
+    // The stored segments' rounding (see SegmentMargin), bounded over the fan's origins:
+    // the apex itself, or points within `reach` of it.
+    const double spread = 2.0 * fan.originReach;
+    const double margin = 0x1p-19 * (MaxAbs(fan.apex) + MaxAbs(fan.apex - c) + spread + h) + 1e-30;
+    const double radius = Norm(e) + fan.slack + 2.0 * margin;  // 2 > sqrt(3): max norm to length
+    const Vec3 v = c - fan.apex;
+    const double dist = Norm(v);
+    if (dist <= radius) return true;
+    if (dist - radius > fan.reach) return false;
+    const double phi = std::acos(std::clamp(Dot(v, fan.axis) / dist, -1.0, 1.0));
+    const double theta = fan.halfAngle;
+    const double beta = std::asin(std::min(1.0, radius / dist));
+    return phi <= theta + beta + 1e-9;
+}
+
+}  // namespace povrayfc
