@@ -87,11 +87,13 @@ void ParseHasher::MixFloat(double value) {
 }
 
 void ParseHasher::MixFloats(const double *values, std::size_t count) {
+    if (!enabled_) return;
     MixWord(count);
     for (std::size_t i = 0; i < count; ++i) MixFloat(values[i]);
 }
 
 void ParseHasher::MixBytes(const void *data, std::size_t size) {
+    if (!enabled_) return;
     const unsigned char *bytes = static_cast<const unsigned char *>(data);
     MixWord(size);
     std::size_t i = 0;
@@ -108,6 +110,7 @@ void ParseHasher::MixBytes(const void *data, std::size_t size) {
 }
 
 void ParseHasher::MixString(const char *text) {
+    if (!enabled_) return;
     if (text == nullptr) {
         MixWord(kNullMarker);
         return;
@@ -116,6 +119,7 @@ void ParseHasher::MixString(const char *text) {
 }
 
 void ParseHasher::MixUcs2String(const unsigned short *text) {
+    if (!enabled_) return;
     if (text == nullptr) {
         MixWord(kNullMarker);
         return;
@@ -126,6 +130,7 @@ void ParseHasher::MixUcs2String(const unsigned short *text) {
 }
 
 bool ParseHasher::MixFileContent(const char *path) {
+    if (!enabled_) return true;
     std::FILE *file = path != nullptr ? std::fopen(path, "rb") : nullptr;
     if (file == nullptr) {
         MixUnique();
@@ -151,9 +156,15 @@ bool ParseHasher::MixFileContent(const char *path) {
     return ok;
 }
 
-void ParseHasher::PushScope() { scopes_.push_back(Scope{kScopeSeed, 0}); }
+void ParseHasher::PushScope() {
+    if (enabled_) scopes_.push_back(Scope{kScopeSeed, 0});
+}
 
 std::uint64_t ParseHasher::PopScope(bool mixIntoParent, unsigned *effects) {
+    if (!enabled_) {
+        if (effects != nullptr) *effects = 0;
+        return 0;
+    }
     const Scope popped = scopes_.back();
     const std::uint64_t hash = Finish(popped.hash);
     if (effects != nullptr) *effects = popped.effects;
@@ -166,6 +177,7 @@ std::uint64_t ParseHasher::PopScope(bool mixIntoParent, unsigned *effects) {
 }
 
 void ParseHasher::PopScopeIntoSlot(const void *slot) {
+    if (!enabled_) return;
     unsigned effects = 0;
     const std::uint64_t hash = PopScope(false, &effects);
     if (slot != nullptr) SetSlotHash(slot, hash, effects);
@@ -180,6 +192,7 @@ bool ParseHasher::SlotHash(const void *slot, std::uint64_t &hash, unsigned *effe
 }
 
 void ParseHasher::MixSlot(const void *slot) {
+    if (!enabled_) return;
     std::uint64_t hash;
     unsigned effects = 0;
     if (slot != nullptr && SlotHash(slot, hash, &effects)) {
@@ -191,12 +204,12 @@ void ParseHasher::MixSlot(const void *slot) {
 }
 
 void ParseHasher::ForgetSlots(void *const *first, std::size_t count) {
-    if (first == nullptr) return;
+    if (!enabled_ || first == nullptr) return;
     for (std::size_t i = 0; i < count; ++i) slots_.erase(&first[i]);
 }
 
 void ParseHasher::CopySlots(void *const *from, void *const *to, std::size_t count) {
-    if (from == nullptr || to == nullptr) return;
+    if (!enabled_ || from == nullptr || to == nullptr) return;
     for (std::size_t i = 0; i < count; ++i) {
         auto found = slots_.find(&from[i]);
         if (found != slots_.end())

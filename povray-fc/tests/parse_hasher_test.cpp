@@ -523,3 +523,25 @@ TEST(SignatureBuilder, ItemEffectsBecomeNames) {
     EXPECT_EQ(povrayfc::InexactEffectNames(0), std::vector<std::string>());
     EXPECT_EQ(povrayfc::InexactEffectNames(1u << 20), std::vector<std::string>{"unknown effect"});
 }
+
+namespace {
+
+TEST(ParseHasherOff, KeepsNothingAndReadsNoFile) {
+    povrayfc::ParseHasher h;
+    h.SetEnabled(false);
+    h.PushScope();
+    h.MixString("sphere");
+    h.MixFloat(1.5);
+    h.SetSlotHash(&h, 42);
+    // Invariant: a disabled hasher records no slot, hashes nothing and leaves no scope.
+    EXPECT_EQ(h.SlotCount(), 0u);
+    EXPECT_EQ(h.PopScope(false), 0u);
+    EXPECT_EQ(h.Depth(), 1u);
+    EXPECT_TRUE(h.MixFileContent("/nonexistent/file"));  // not even opened
+    h.SetEnabled(true);
+    h.PushScope();
+    h.MixString("sphere");
+    EXPECT_NE(h.PopScope(false), 0u);
+}
+
+}  // namespace

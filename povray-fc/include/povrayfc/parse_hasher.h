@@ -74,8 +74,17 @@ public:
     // Forget everything: only the root scope is left and no slot has a content hash.
     void BeginParse();
 
+    // Off (Frame_Coherence off): every call below returns at once, reads no file and
+    // keeps nothing, so a render without fc pays one branch per hook. On by default.
+    void SetEnabled(bool enabled) {
+        enabled_ = enabled;
+        BeginParse();
+    }
+    bool Enabled() const { return enabled_; }
+
     // --- mixing into the current (innermost) scope; order matters ---
     void MixWord(std::uint64_t word) {
+        if (!enabled_) return;
         std::uint64_t &h = scopes_.back().hash;
         h = HashFinalize64(h + word * 0x9e3779b97f4a7c15ULL + 0x632be59bd9b4e019ULL);
     }
@@ -89,14 +98,18 @@ public:
     void MixString(const char *text);
     // A NUL-terminated UCS-2 string, POV-Ray's UCS2 (unsigned short).
     void MixUcs2String(const unsigned short *text);
-    void MixUnique() { MixWord(UniqueHashValue()); }
+    void MixUnique() {
+        if (enabled_) MixWord(UniqueHashValue());
+    }
     // Every byte of the file at `path` (an image, density or font file the parser
     // reads: its name alone would miss a file rewritten between frames). A file that
     // cannot be read mixes a unique value. Returns whether it could be read.
     bool MixFileContent(const char *path);
 
     // --- inexact effects of the current scope ---
-    void NoteEffects(unsigned effects) { scopes_.back().effects |= effects; }
+    void NoteEffects(unsigned effects) {
+        if (enabled_) scopes_.back().effects |= effects;
+    }
     unsigned Effects() const { return scopes_.back().effects; }
 
     // --- scopes ---
@@ -114,13 +127,15 @@ public:
 
     // --- content hashes (and effects) of identifier slots ---
     void SetSlotHash(const void *slot, std::uint64_t hash, unsigned effects = 0) {
-        slots_[slot] = Slot{hash, effects};
+        if (enabled_) slots_[slot] = Slot{hash, effects};
     }
     bool SlotHash(const void *slot, std::uint64_t &hash, unsigned *effects = nullptr) const;
     // Mixes the slot's content hash, or a unique value when it has none, and adds the
     // slot's effects to the current scope.
     void MixSlot(const void *slot);
-    void ForgetSlot(const void *slot) { slots_.erase(slot); }
+    void ForgetSlot(const void *slot) {
+        if (enabled_) slots_.erase(slot);
+    }
     // The slots &first[0] ... &first[count-1] (an array's element pointers).
     void ForgetSlots(void *const *first, std::size_t count);
     // Gives to[i] the content hash of from[i] (or none when from[i] has none).
@@ -140,6 +155,7 @@ private:
     };
     std::vector<Scope> scopes_;
     std::unordered_map<const void *, Slot> slots_;
+    bool enabled_ = true;
 };
 
 // What a finished top-level item was, as the parser hook classifies it.
