@@ -51,3 +51,41 @@ def test_parse_error_names_file_and_line(tmp_path):
     assert done.returncode != 0
     assert "broken.pov" in done.stderr and "Parse Error" in done.stderr
     assert not (tmp_path / "broken.tga").exists()
+
+
+import pytest  # noqa: E402
+
+
+@pytest.mark.parametrize("option, named", [
+    ("Frame_Coherence=maybe", "Frame_Coherence=maybe: expected on or off"),
+    ("Frame_Coherence_Grid=-1", "Frame_Coherence_Grid=-1: expected a whole number from 0 (automatic) to 256"),
+    ("Frame_Coherence_Grid=2000", "Frame_Coherence_Grid=2000: expected a whole number from 0"),
+    ("+YG300", "+YG300: expected a whole number from 0"),
+    ("+YGmany", "+YGmany: expected a whole number from 0"),
+])
+def test_bad_frame_coherence_option_is_named_and_fails(tmp_path, option, named):
+    done = render(POVRAY_FC, SCENES / "tiny" / "tiny.pov", tmp_path / "t.tga", "+W8", "+H8", option,
+                  cwd=tmp_path)
+    assert done.returncode != 0
+    # One line names the option, its value and what it accepts.
+    assert any(line == f"povray-fc: {named}" or line.startswith(f"povray-fc: {named}")
+               for line in done.stderr.splitlines()), done.stderr
+    assert not (tmp_path / "t.tga").exists()
+
+
+@pytest.mark.parametrize("value, shown", [("on", "On"), ("off", "Off"), ("yes", "On"), ("0", "Off")])
+def test_option_summary_says_whether_frame_coherence_is_on(tmp_path, value, shown):
+    done = render(POVRAY_FC, SCENES / "tiny" / "tiny.pov", tmp_path / "t.tga", "+W8", "+H8",
+                  f"Frame_Coherence={value}", "+GA", cwd=tmp_path)
+    assert done.returncode == 0, done.stderr
+    assert f"  Frame coherence......{shown}" in done.stderr.splitlines()
+
+
+def test_image_too_large_for_the_store_fails_at_once_with_the_reason(tmp_path):
+    done = render(POVRAY_FC, SCENES / "tiny" / "tiny.pov", tmp_path / "t.tga", "+W100000", "+H100000",
+                  "Frame_Coherence=on", cwd=tmp_path, timeout=120)
+    assert done.returncode != 0
+    lines = [line for line in done.stderr.splitlines() if "Frame_Coherence: a 100000x100000 render area" in line]
+    assert lines and "Frame_Coherence=off" in lines[0], done.stderr[-2000:]
+    assert "Critical Error" not in done.stderr
+    assert not (tmp_path / "t.tga").exists()

@@ -3,6 +3,9 @@
 
 #include <algorithm>
 #include <cstdio>
+#include <stdexcept>
+
+#include <unistd.h>
 
 #include "povrayfc/change_detection.h"
 #include "povrayfc/effect_policy.h"
@@ -31,7 +34,27 @@ void FrameCoherence::Forget() {
     policy_.Reset();
 }
 
-void FrameCoherence::NewStore(const FrameSetup &setup) { store_ = std::make_unique<SampleStore>(BlockCount(setup)); }
+void FrameCoherence::NewStore(const FrameSetup &setup) {
+    CheckMemory(setup);
+    store_ = std::make_unique<SampleStore>(BlockCount(setup));
+}
+
+// Refuses, with a one-line message naming the option, a render area whose store could not
+// fit: far better than the render running out of memory half way.
+void FrameCoherence::CheckMemory(const FrameSetup &setup) {
+    const double pixels = double(std::max(0, setup.AreaWidth())) * double(std::max(0, setup.AreaHeight()));
+    const double needed = pixels * double(kMinStoreBytesPerPixel);
+    const double pages = double(sysconf(_SC_PHYS_PAGES)), pageSize = double(sysconf(_SC_PAGESIZE));
+    const double available = pages > 0 && pageSize > 0 ? pages * pageSize : 0;
+    if (available > 0 && needed > 0.5 * available) {
+        char message[256];
+        std::snprintf(message, sizeof message,
+                      "Frame_Coherence: a %dx%d render area needs at least %.0f GiB for fc's store, more than half of "
+                      "this machine's %.0f GiB; render it with Frame_Coherence=off or a smaller area",
+                      setup.AreaWidth(), setup.AreaHeight(), needed / 1073741824.0, available / 1073741824.0);
+        throw std::runtime_error(message);
+    }
+}
 
 void FrameCoherence::BeginFrame(bool enabled, const FrameSetup &setup, const void *sceneKey,
                                 const SceneEffects &effects) {

@@ -33,8 +33,13 @@ class FrameCoherence {
     // The process-wide session (POV-Ray keeps nothing else across frames).
     static FrameCoherence &Get();
 
+    // The least a stored pixel takes (its final colour and one camera sample).
+    static constexpr std::size_t kMinStoreBytesPerPixel = 20 + sizeof(StoredSample);
+
     // Starts a frame. `enabled` is the Frame_Coherence option; when false the session
-    // forgets everything and the frame renders exactly as in POV-Ray.
+    // forgets everything and the frame renders exactly as in POV-Ray. Throws
+    // std::runtime_error (a one-line message) when the store for this image could not fit
+    // in memory.
     void BeginFrame(bool enabled, const FrameSetup &setup, const void *sceneKey, const SceneEffects &effects);
 
     // What the render threads do this frame (valid until the next BeginFrame).
@@ -53,6 +58,7 @@ class FrameCoherence {
 
     void Forget();
     void NewStore(const FrameSetup &setup);
+    static void CheckMemory(const FrameSetup &setup);
     void PlanFrame(const FrameSetup &setup, const SceneSignature &signature, const SceneEffects &effects,
                    const std::string &inexact);
 

@@ -8,6 +8,10 @@
 namespace povrayfc {
 
 struct FrameSetup {
+    // Frame_Coherence_Grid's range: 0 (automatic) to this many voxels along the change
+    // index's longest axis (256^3 voxels of 4-byte offsets is 64 MiB).
+    static constexpr int kMaxGridResolution = 256;
+
     int width = 0, height = 0;                 // the whole image
     int left = 0, top = 0, right = -1, bottom = -1;  // render area, inclusive, 0-based
     int samplingMethod = 0;                    // 0 no anti-aliasing, 1 or 2: POV-Ray's +AM
