@@ -72,7 +72,7 @@ bool SampleIsDirty(const StoredSample &s, const BlockRecord &record, const Chang
     const std::uint8_t *fanOf = record.fans.fanOf.data() + s.firstSegment;
     for (std::uint32_t i = 0; i < s.segmentCount; ++i) {
         if (fanOf[i] == BlockFans::kLoose) {
-            if (!looseBoxHit && std::isfinite(segment[i].length)) continue;
+            if (!looseBoxHit && InLooseBox(segment[i])) continue;
             if (changes.MayMeet(segment[i])) return true;
             continue;
         }

@@ -9,8 +9,6 @@ namespace povrayfc {
 
 namespace {
 
-// Segments longer than this are left out of the loose box (see below).
-constexpr double kLongSegment = 1e9;
 
 double Dot(const Vec3 &a, const Vec3 &b) { return a.x * b.x + a.y * b.y + a.z * b.z; }
 double Norm(const Vec3 &a) { return std::sqrt(Dot(a, a)); }
@@ -89,9 +87,7 @@ SegmentFan Cone(const Segment *segments, const std::vector<std::uint32_t> &membe
 
 // A loose segment joins the loose box, or marks the block as having unbounded ones.
 void AddLoose(BlockFans &fans, const Segment &s) {
-    // A ray that hit nothing ends at POV-Ray's "infinity" (BOUND_HUGE, 2e10): its box
-    // would cover everything.
-    if (!(s.length < kLongSegment)) {
+    if (!InLooseBox(s)) {
         fans.looseUnbounded = true;
         return;
     }

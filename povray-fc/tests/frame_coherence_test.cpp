@@ -291,3 +291,55 @@ TEST_F(FrameCoherenceRun, OffForgetsEverything) {
 
 }  // namespace
 }  // namespace povrayfc
+
+namespace povrayfc {
+namespace {
+
+// A loose ray that hit nothing (POV-Ray's 2e10 "infinity") is not held by a block's loose
+// box; a change it passes through must still make its sample dirty (a regression: it was
+// skipped whenever the box missed the change).
+TEST_F(FrameCoherenceRun, UnboundedLooseRayNotHeldByTheLooseBoxStillSeesAChange) {
+    FrameCoherence &fc = FrameCoherence::Get();
+    auto frame = [&](int n, double boxX) {
+        ToyScene s;
+        s.boxes.push_back({7, Box{Vec3{boxX, 50, 50}, Vec3{boxX + 1, 51, 51}}});
+        SceneSignature sig = Signature(s);
+        PublishSceneSignature(kScene, sig);
+        fc.BeginFrame(true, ToySetup(n), kScene, {});
+        BlockTracer tracer(fc.Plan());
+        int traced = 0;
+        const bool reused = tracer.Begin(0, 0, 0, kBlock - 1, kBlock - 1);
+        if (!reused) {
+            for (int y = 0; y < kBlock; ++y)
+                for (int x = 0; x < kBlock; ++x) {
+                    float c[5] = {0, 0, 0, 0, 0};
+                    if (tracer.Reuse(x, y, c)) continue;
+                    tracer.BeginSample();
+                    // Short loose segments far from the box, and from pixel (1, 1) a
+                    // reflection-like ray towards (50.5, 50.5, 50.5) that hit nothing.
+                    const double o[3] = {double(x), double(y), -3}, d[3] = {0.1, 0.2, 1};
+                    RecordRaySegment(o, d, 0.5);
+                    const double p[3] = {double(x), double(y), 0};
+                    const double r[3] = {50.5 - x, 50.5 - y, 50.5};
+                    if (x == 1 && y == 1) RecordRaySegment(p, r, 2e10);
+                    tracer.EndSample(x, y, c);
+                    ++traced;
+                }
+            for (int y = 0; y < kBlock; ++y)
+                for (int x = 0; x < kBlock; ++x) {
+                    const float c[5] = {0, 0, 0, 0, 0};
+                    tracer.SetPixel(x, y, c);
+                }
+            tracer.End();
+        }
+        fc.EndFrame(0);
+        return traced;
+    };
+    EXPECT_EQ(frame(1, 100), kBlock * kBlock);  // first frame; the box is far away
+    EXPECT_EQ(frame(2, 100), 0);                 // nothing changed
+    // The box moves into the long ray's way (old place far from everything).
+    EXPECT_EQ(frame(3, 50), 1);
+}
+
+}  // namespace
+}  // namespace povrayfc

@@ -56,6 +56,10 @@ struct BlockFans {
     std::size_t MemoryBytes() const { return fans.capacity() * sizeof(SegmentFan) + fanOf.capacity(); }
 };
 
+// Whether a loose segment is held by BlockFans::looseBox: rays that hit nothing end at
+// POV-Ray's "infinity" (BOUND_HUGE, 2e10), and a box around them would cover everything.
+inline bool InLooseBox(const Segment &s) { return s.length < 1e9f; }
+
 // The cones around the segments of each fan, given each segment's fan (from the
 // recording) and the fans' apexes. Takes over `fanOf`.
 BlockFans BuildFans(const Segment *segments, std::vector<std::uint8_t> fanOf, const FanApexes &apexes);
