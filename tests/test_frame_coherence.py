@@ -127,3 +127,19 @@ def test_newton_fc_frames_equal_full_renders(options, motion, tmp_path):
     for n in range(1, FRAMES + 1):
         assert_same_pixels(tmp_path / "off" / f"f{n}.tga", tmp_path / "on" / f"f{n}.tga")
     assert sum(int(r["rays"]) for r in rows_on[1:]) < sum(int(r["rays"]) for r in rows_off[1:])
+
+
+def test_light_group_change_is_local(tmp_path):
+    # A light_group's light lights only the group's objects: not a full frame.
+    rows = render_animation(FC_SCENES / "light_group.pov", tmp_path, True, 1, [])
+    for row in rows[1:]:
+        assert row["full_reason"] == "", row
+        assert 0 < int(row["traced"]) < int(row["pixels"]) // 4, row
+
+
+def test_moving_child_of_a_union_dirties_only_its_places(tmp_path):
+    # The union spans the frame (a wall behind everything); only the small sphere moves.
+    rows = render_animation(FC_SCENES / "union_child.pov", tmp_path, True, 1, [])
+    for row in rows[1:]:
+        assert row["full_reason"] == "", row
+        assert 0 < int(row["traced"]) < int(row["pixels"]) // 5, row

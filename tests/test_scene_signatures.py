@@ -79,12 +79,15 @@ def parse_listing(stderr):
 
 
 def signatures(tmp_path, scene_text, frames=2, final_clock=1.0, extra=()):
-    """Render `frames` frames (clock 0 .. final_clock) of the scene; their signatures."""
+    """Render `frames` frames (clock 0 .. final_clock) of the scene; their signatures.
+
+    With Frame_Coherence on: the parser hashes nothing with it off."""
     scene = tmp_path / "scene.pov"
     scene.write_text(scene_text)
     env = dict(os.environ, POVRAYFC_DEBUG_SIGNATURES="1")
     args = [str(POVRAY_FC), f"+I{scene}", f"+O{tmp_path}/frame", "+FT", "+W16", "+H12",
-            "-D", "-P", "-V", "+KFI1", f"+KFF{frames}", "+KI0", f"+KF{final_clock}", *extra]
+            "-D", "-P", "-V", "+KFI1", f"+KFF{frames}", "+KI0", f"+KF{final_clock}", "Frame_Coherence=on",
+            *extra]
     done = subprocess.run(args, cwd=tmp_path, capture_output=True, text=True, timeout=300,
                           env=env, stdin=subprocess.DEVNULL)
     assert done.returncode == 0, done.stderr[-3000:]
@@ -501,3 +504,15 @@ text { ttf "timrom.ttf" "fc" 0.1, 0 translate <0, 2, 0> } // @text
     assert f1.glob == f3.glob
     (f4,) = signatures(tmp_path, scene.replace("timrom.ttf", "cyrvetic.ttf"), frames=1)
     assert f4.glob != f1.glob
+
+
+def test_no_signature_with_frame_coherence_off(tmp_path):
+    # The parser hashes nothing (and reads no data file again) when fc is off.
+    scene = tmp_path / "scene.pov"
+    scene.write_text("camera { location <0, 1, -4> look_at 0 }\nsphere { 0, 1 pigment { rgb 1 } }\n")
+    env = dict(os.environ, POVRAYFC_DEBUG_SIGNATURES="1")
+    done = subprocess.run([str(POVRAY_FC), f"+I{scene}", f"+O{tmp_path}/f", "+FT", "+W16", "+H12", "-D", "-P",
+                           "-V", "Frame_Coherence=off"], cwd=tmp_path, capture_output=True, text=True,
+                          timeout=120, env=env, stdin=subprocess.DEVNULL)
+    assert done.returncode == 0, done.stderr[-2000:]
+    assert "povrayfc-signature" not in done.stderr

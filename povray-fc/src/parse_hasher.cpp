@@ -20,6 +20,7 @@ namespace {
 
 constexpr std::uint64_t kScopeSeed = 0x243f6a8885a308d3ULL;  // pi's fraction: any odd constant
 constexpr std::uint64_t kNullMarker = 0x6e756c6c6e756c6cULL;
+constexpr std::uint64_t kChildMarker = 0x6368696c64000000ULL;  // "child": a child's place in a shell
 
 std::uint64_t RandomStart() {
     std::uint64_t seed = 0;
@@ -76,7 +77,7 @@ ParseHasher::ParseHasher() { BeginParse(); }
 
 void ParseHasher::BeginParse() {
     scopes_.clear();
-    scopes_.push_back(Scope{kScopeSeed, 0});
+    scopes_.push_back(Scope{kScopeSeed, 0, kScopeSeed, false});
     slots_.clear();
 }
 
@@ -156,8 +157,21 @@ bool ParseHasher::MixFileContent(const char *path) {
     return ok;
 }
 
-void ParseHasher::PushScope() {
-    if (enabled_) scopes_.push_back(Scope{kScopeSeed, 0});
+void ParseHasher::PushScope(bool trackShell) {
+    if (enabled_) scopes_.push_back(Scope{kScopeSeed, 0, kScopeSeed, trackShell});
+}
+
+std::uint64_t ParseHasher::PopChildScope(bool keep) {
+    if (!enabled_) return 0;
+    const Scope child = scopes_.back();
+    if (scopes_.size() > 1) scopes_.pop_back();
+    if (!keep) return 0;
+    const std::uint64_t hash = Finish(child.hash);
+    Scope &parent = scopes_.back();
+    parent.hash = Mix(parent.hash, hash);
+    if (parent.trackShell) parent.shell = Mix(parent.shell, kChildMarker);
+    parent.effects |= child.effects;
+    return hash;
 }
 
 std::uint64_t ParseHasher::PopScope(bool mixIntoParent, unsigned *effects) {
@@ -268,17 +282,40 @@ void SignatureBuilder::SetItemObject(const float lowerLeft[3], const float lengt
     if (current_.infinite) current_.bounds = Box();
 }
 
-void SignatureBuilder::SetItemCapsule(const double a[3], const double b[3], double radius) {
-    Capsule c;
+bool SignatureBuilder::MakeCapsule(const double a[3], const double b[3], double radius, Capsule &c) {
     c.a = Vec3{a[0], a[1], a[2]};
     c.b = Vec3{b[0], b[1], b[2]};
     // Grow like the boxes: POV-Ray's own numbers carry rounding.
     const double scale = std::max({std::fabs(a[0]), std::fabs(a[1]), std::fabs(a[2]), std::fabs(b[0]),
                                    std::fabs(b[1]), std::fabs(b[2]), radius});
     c.radius = radius * (1.0 + kRelativePad) + scale * kRelativePad + kAbsolutePad;
-    if (!c.a.IsFinite() || !c.b.IsFinite() || !std::isfinite(c.radius)) return;
+    return c.a.IsFinite() && c.b.IsFinite() && std::isfinite(c.radius);
+}
+
+void SignatureBuilder::SetItemCapsule(const double a[3], const double b[3], double radius) {
+    Capsule c;
+    if (!MakeCapsule(a, b, radius, c)) return;
     current_.hasCapsule = true;
     current_.capsule = c;
+}
+
+void SignatureBuilder::AddItemChild(std::uint64_t hash, const float lowerLeft[3], const float lengths[3],
+                                    bool unbounded, bool isLightSource) {
+    ChildSignature child;
+    child.hash = hash;
+    child.isLight = isLightSource;
+    child.infinite = unbounded || !ObjectBox(lowerLeft, lengths, child.bounds);
+    if (child.infinite) child.bounds = Box();
+    current_.children.push_back(child);
+}
+
+void SignatureBuilder::SetChildCapsule(const double a[3], const double b[3], double radius) {
+    if (current_.children.empty()) return;
+    ChildSignature &child = current_.children.back();
+    Capsule c;
+    if (child.infinite || !MakeCapsule(a, b, radius, c)) return;
+    child.hasCapsule = true;
+    child.capsule = c;
 }
 
 void SignatureBuilder::EndItem(ParseItemClass itemClass, std::uint64_t hash, bool addedLights,
@@ -310,7 +347,22 @@ void SignatureBuilder::EndItem(ParseItemClass itemClass, std::uint64_t hash, boo
                 object.bounds = current_.bounds;
                 object.hasCapsule = current_.hasCapsule && !current_.infinite;
                 object.capsule = current_.capsule;
-                signature_.objects.push_back(object);
+                object.shell = current_.shell;
+                object.children = std::move(current_.children);
+                if (current_.lightGroup) {
+                    // A light_group is where its other children are: its lights light
+                    // nothing else, and their own boxes are unbounded.
+                    object.infinite = false;
+                    object.bounds = Box();
+                    object.hasCapsule = false;
+                    for (const ChildSignature &child : object.children) {
+                        if (child.isLight) continue;
+                        if (child.infinite) object.infinite = true;
+                        object.bounds.Grow(child.bounds);
+                    }
+                    if (object.infinite) object.bounds = Box();
+                }
+                signature_.objects.push_back(std::move(object));
             }
             break;
     }

@@ -85,8 +85,9 @@ public:
     // --- mixing into the current (innermost) scope; order matters ---
     void MixWord(std::uint64_t word) {
         if (!enabled_) return;
-        std::uint64_t &h = scopes_.back().hash;
-        h = HashFinalize64(h + word * 0x9e3779b97f4a7c15ULL + 0x632be59bd9b4e019ULL);
+        Scope &scope = scopes_.back();
+        scope.hash = Mix(scope.hash, word);
+        if (scope.trackShell) scope.shell = Mix(scope.shell, word);
     }
     void MixToken(int tokenId) { MixWord(0x746f6b0000000000ULL ^ static_cast<std::uint32_t>(tokenId)); }
     void MixInt(long long value) { MixWord(static_cast<std::uint64_t>(value)); }
@@ -113,7 +114,18 @@ public:
     unsigned Effects() const { return scopes_.back().effects; }
 
     // --- scopes ---
-    void PushScope();
+    // trackShell: the scope also keeps a "shell" hash, of everything but the scopes of its
+    // children (PushChildScope): a union whose own tokens are unchanged, but not its
+    // children's, has the same shell, and only its changed children changed.
+    void PushScope(bool trackShell = false);
+    // A child's scope (an object inside a CSG item), popped with PopChildScope.
+    void PushChildScope() { PushScope(false); }
+    // Ends a child's scope: with keep, its hash goes into the parent's hash and a fixed
+    // marker into the parent's shell, and the child's hash is returned; without (the
+    // attempt found no child), it is dropped.
+    std::uint64_t PopChildScope(bool keep);
+    // The shell of the innermost scope (0 when it keeps none).
+    std::uint64_t Shell() const { return scopes_.back().trackShell ? Finish(scopes_.back().shell) : 0; }
     // Ends the innermost scope and returns its hash (and, with `effects`, its effects);
     // with mixIntoParent the hash is also mixed into the scope around it and the
     // effects go there too. The root scope is never popped: popping it returns its
@@ -144,10 +156,15 @@ public:
 
 private:
     static std::uint64_t Finish(std::uint64_t h) { return HashFinalize64(h ^ 0x5bd1e9955bd1e995ULL); }
+    static std::uint64_t Mix(std::uint64_t h, std::uint64_t word) {
+        return HashFinalize64(h + word * 0x9e3779b97f4a7c15ULL + 0x632be59bd9b4e019ULL);
+    }
 
     struct Scope {
         std::uint64_t hash;
         unsigned effects;
+        std::uint64_t shell;
+        bool trackShell;
     };
     struct Slot {
         std::uint64_t hash;
@@ -187,6 +204,24 @@ public:
     // After SetItemObject, for a sphere, cylinder or cone: every point of the object lies
     // within `radius` of the world-space segment [a, b].
     void SetItemCapsule(const double a[3], const double b[3], double radius);
+    // After SetItemObject, for a CSG item whose children were hashed one by one: each
+    // direct child with its own hash and world-space box (as SetItemObject), and the
+    // item's shell hash (see ParseHasher::PushScope). A child may get a capsule too.
+    void AddItemChild(std::uint64_t hash, const float lowerLeft[3], const float lengths[3], bool unbounded,
+                      bool isLightSource);
+    void SetChildCapsule(const double a[3], const double b[3], double radius);
+    void SetItemCapsule(const Capsule &c) {
+        const double a[3] = {c.a.x, c.a.y, c.a.z}, b[3] = {c.b.x, c.b.y, c.b.z};
+        SetItemCapsule(a, b, c.radius);
+    }
+    void SetChildCapsule(const Capsule &c) {
+        const double a[3] = {c.a.x, c.a.y, c.a.z}, b[3] = {c.b.x, c.b.y, c.b.z};
+        SetChildCapsule(a, b, c.radius);
+    }
+    void SetItemShell(std::uint64_t shell) { current_.shell = shell; }
+    // The item is a light_group: its lights light only its other children, so its place
+    // is theirs (the lights' boxes are unbounded) and a light's change is theirs.
+    void MarkLightGroup() { current_.lightGroup = true; }
     // addedLights: the item added light sources to the scene's global light list
     // (a light_source, or a union containing one); its hash then goes into `lights`.
     // effects: the inexact effects the item's scope collected (InexactEffect bits).
@@ -239,8 +274,12 @@ private:
         Box bounds;
         bool hasCapsule = false;
         Capsule capsule;
+        std::uint64_t shell = 0;
+        bool lightGroup = false;
+        std::vector<ChildSignature> children;
     };
     static void MixInto(std::uint64_t &target, std::uint64_t hash);
+    static bool MakeCapsule(const double a[3], const double b[3], double radius, Capsule &capsule);
 
     SceneSignature signature_;
     bool debug_ = false;

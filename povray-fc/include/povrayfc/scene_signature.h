@@ -20,6 +20,17 @@
 
 namespace povrayfc {
 
+// A direct child of a CSG item (union, merge, intersection, difference, light_group),
+// hashed on its own.
+struct ChildSignature {
+    std::uint64_t hash = 0;
+    Box bounds;              // world-space; ignored when infinite
+    bool infinite = false;
+    bool isLight = false;    // a light source of a light_group
+    bool hasCapsule = false;
+    Capsule capsule;
+};
+
 // One top-level object of the scene (after Post_Process, with its final bounds).
 struct ObjectSignature {
     std::uint64_t hash = 0;
@@ -29,6 +40,12 @@ struct ObjectSignature {
     // meet are dirty when the object changes (a slanted string's box is mostly empty).
     bool hasCapsule = false;
     Capsule capsule;
+    // For CSG items: the hash of everything but the children's own tokens, and the
+    // children. Two frames' objects with the same shell differ only where their changed
+    // children are (a CSG's surface inside a child's box depends on that child alone, or
+    // on children whose boxes it overlaps).
+    std::uint64_t shell = 0;
+    std::vector<ChildSignature> children;
 };
 
 struct SceneSignature {

@@ -1,0 +1,24 @@
+// Capsule hulls of POV-Ray shapes from their parameters: tighter than their bounding
+// boxes where those are loosest (a slanted cylinder's box is mostly empty).
+#ifndef POVRAYFC_SHAPE_HULLS_H
+#define POVRAYFC_SHAPE_HULLS_H
+
+#include "povrayfc/geometry.h"
+
+namespace povrayfc {
+
+// POV-Ray's 4x4 transform matrix (row-vector convention: p' = p * m, translation in row 3).
+using Matrix4 = double[4][4];
+
+// A cone or cylinder is the image, under its transform, of a shape inside the canonical
+// unit cylinder (radius 1, z in [0, 1]); that image lies within |m x| + |m y| (a bound of
+// the spectral norm on the cross-section) of the image of the axis.
+Capsule CapsuleOfUnitCylinder(const Matrix4 &m);
+
+// A sphere of `radius` about `centre`; with a transform (an ellipsoid) it lies within
+// radius * (|m x| + |m y| + |m z|) of the transformed centre.
+Capsule CapsuleOfSphere(const double centre[3], double radius, const Matrix4 *m);
+
+}  // namespace povrayfc
+
+#endif

@@ -1,0 +1,75 @@
+// Tests for the capsule hulls of shapes: every point of the shape lies in the capsule.
+#include <cmath>
+#include <random>
+
+#include <gtest/gtest.h>
+
+#include "povrayfc/shape_hulls.h"
+
+using namespace povrayfc;
+
+namespace {
+
+void Multiply(const double a[4][4], const double b[4][4], double r[4][4]) {
+    for (int i = 0; i < 4; ++i)
+        for (int j = 0; j < 4; ++j) {
+            r[i][j] = 0;
+            for (int k = 0; k < 4; ++k) r[i][j] += a[i][k] * b[k][j];
+        }
+}
+
+void RandomTransform(std::mt19937_64 &rng, double m[4][4]) {
+    std::uniform_real_distribution<double> u(-1, 1), s(0.1, 3);
+    double scale[4][4] = {{s(rng), 0, 0, 0}, {0, s(rng), 0, 0}, {0, 0, s(rng), 0}, {0, 0, 0, 1}};
+    const double a = 3 * u(rng), b = 3 * u(rng);
+    double rz[4][4] = {{std::cos(a), std::sin(a), 0, 0}, {-std::sin(a), std::cos(a), 0, 0}, {0, 0, 1, 0}, {0, 0, 0, 1}};
+    double rx[4][4] = {{1, 0, 0, 0}, {0, std::cos(b), std::sin(b), 0}, {0, -std::sin(b), std::cos(b), 0}, {0, 0, 0, 1}};
+    double shear[4][4] = {{1, 0.3 * u(rng), 0, 0}, {0, 1, 0, 0}, {0.2 * u(rng), 0, 1, 0},
+                          {5 * u(rng), 5 * u(rng), 5 * u(rng), 1}};
+    double t1[4][4], t2[4][4];
+    Multiply(scale, rz, t1);
+    Multiply(t1, rx, t2);
+    Multiply(t2, shear, m);
+}
+
+Vec3 Apply(const double m[4][4], const Vec3 &v) {
+    Vec3 r;
+    for (int i = 0; i < 3; ++i) r[i] = v.x * m[0][i] + v.y * m[1][i] + v.z * m[2][i] + m[3][i];
+    return r;
+}
+
+TEST(ShapeHulls, TransformedUnitCylinderLiesInItsCapsule) {
+    std::mt19937_64 rng(9);
+    std::uniform_real_distribution<double> u(0, 1), angle(0, 6.283185307179586);
+    for (int t = 0; t < 200; ++t) {
+        double m[4][4];
+        RandomTransform(rng, m);
+        const Capsule c = CapsuleOfUnitCylinder(m);
+        for (int k = 0; k < 500; ++k) {
+            const double r = std::sqrt(u(rng)), a = angle(rng);
+            const Vec3 p = Apply(m, Vec3{r * std::cos(a), r * std::sin(a), u(rng)});
+            // Invariant: points of the cylinder are within the capsule's radius of its axis.
+            ASSERT_LE(c.AxisDistance(p), c.radius * (1 + 1e-12)) << t << " " << k;
+        }
+    }
+}
+
+TEST(ShapeHulls, SphereAndEllipsoidLieInTheirCapsules) {
+    std::mt19937_64 rng(10);
+    std::uniform_real_distribution<double> u(-1, 1);
+    const double centre[3] = {1, -2, 3};
+    EXPECT_EQ(CapsuleOfSphere(centre, 2, nullptr).radius, 2);
+    for (int t = 0; t < 200; ++t) {
+        double m[4][4];
+        RandomTransform(rng, m);
+        const Capsule c = CapsuleOfSphere(centre, 1.5, &m);
+        for (int k = 0; k < 500; ++k) {
+            Vec3 d{u(rng), u(rng), u(rng)};
+            const double n = std::sqrt(d.x * d.x + d.y * d.y + d.z * d.z);
+            const Vec3 p = Apply(m, Vec3{centre[0] + 1.5 * d.x / n, centre[1] + 1.5 * d.y / n, centre[2] + 1.5 * d.z / n});
+            ASSERT_LE(c.AxisDistance(p), c.radius * (1 + 1e-12));
+        }
+    }
+}
+
+}  // namespace
