@@ -108,8 +108,9 @@ void FrameCoherence::BeginFrame(bool enabled, const FrameSetup &setup, const voi
     plan_.store = store_.get();
     if (!plan_.store) plan_.mode = FramePlan::Mode::kIdle;
     // Every stored block was sent to the front end when it was traced, and the front
-    // end's image lives as long as the animation.
-    plan_.skipStoredBlocks = setup.frontEndKeepsImage;
+    // end's image lives as long as the animation; but radiosity's pretrace draws its
+    // coarse passes into that image every frame, over what the last frame left there.
+    plan_.skipStoredBlocks = setup.frontEndKeepsImage && !effects.radiosity;
     // Coherent: stored samples or pixels may be reused (kOpaque only when nothing changed).
     current_.coherent = plan_.mode == FramePlan::Mode::kRecord ||
                         (plan_.mode == FramePlan::Mode::kOpaque && !plan_.everythingDirty);
