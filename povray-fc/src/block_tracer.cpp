@@ -69,7 +69,7 @@ bool SampleIsDirty(const StoredSample &s, const BlockRecord &record, const Chang
                    const HullMask *fanHulls, bool looseBoxHit) {
     if (s.segmentCount == StoredSample::kEverything) return true;
     const Segment *segment = record.segments.data() + s.firstSegment;
-    const std::uint8_t *fanOf = record.fans.fanOf.data() + s.firstSegment;
+    const std::uint8_t *fanOf = record.fanOf.data() + s.firstSegment;
     for (std::uint32_t i = 0; i < s.segmentCount; ++i) {
         if (fanOf[i] == BlockFans::kLoose) {
             if (!looseBoxHit && InLooseBox(segment[i])) continue;
@@ -134,6 +134,10 @@ bool BlockTracer::Begin(std::uint32_t serial, int left, int top, int right, int 
     // The block's clean samples: those none of whose rays may meet a change. Most blocks
     // are far from every change, which the cones around their segments show at once.
     const std::size_t n = old_->samples.size();
+    if (!old_->fansBuilt) {
+        old_->fans = BuildFans(old_->segments.data(), old_->fanOf, old_->apexes);
+        old_->fansBuilt = true;
+    }
     HullMask fanHulls[BlockFans::kMaxFans] = {0};
     const bool fansHit = FansHit(*old_, *plan.changes, fanHulls);
     const bool looseHit = LooseBoxHit(*old_, *plan.changes);
@@ -203,7 +207,7 @@ bool BlockTracer::Reuse(double x, double y, float rgbft[5]) {
         next_.segments.insert(next_.segments.end(), first, first + s.segmentCount);
         // Recorded fans keep their numbers (the new record starts from the old apexes);
         // the leftover fan is built anew at End.
-        const std::uint8_t *fans = old_->fans.fanOf.data() + s.firstSegment;
+        const std::uint8_t *fans = old_->fanOf.data() + s.firstSegment;
         for (std::uint32_t k = 0; k < s.segmentCount; ++k)
             nextFanOf_.push_back(fans[k] < old_->apexes.count ? fans[k] : BlockFans::kLoose);
     }
@@ -307,14 +311,15 @@ void BlockTracer::End() {
     record->pixels.assign(next_.pixels.begin(), next_.pixels.end());
     if (record_) {
         record->apexes = next_.apexes;
+        record->fanOf.assign(nextFanOf_.begin(), nextFanOf_.end());
         // Grow the old cones by what was traced anew, unless much of the block is new
-        // (cones only ever widen when grown).
+        // (cones only ever widen when grown); otherwise they are built when needed.
         std::size_t fresh = 0;
         for (const auto &range : tracedSegments_) fresh += range.second;
-        if (old_ && 4 * fresh <= record->segments.size())
-            record->fans = GrowFans(old_->fans, record->segments.data(), nextFanOf_, next_.apexes, tracedSegments_);
-        else
-            record->fans = BuildFans(record->segments.data(), nextFanOf_, next_.apexes);
+        if (old_ && old_->fansBuilt && 4 * fresh <= record->segments.size()) {
+            record->fans = GrowFans(old_->fans, record->segments.data(), record->fanOf, next_.apexes, tracedSegments_);
+            record->fansBuilt = true;
+        }
         for (const StoredSample &s : record->samples)
             record->hasEverything |= s.segmentCount == StoredSample::kEverything;
     }

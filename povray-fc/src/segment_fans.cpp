@@ -97,13 +97,12 @@ void AddLoose(BlockFans &fans, const Segment &s) {
 
 }  // namespace
 
-BlockFans BuildFans(const Segment *segments, std::vector<std::uint8_t> fanOf, const FanApexes &apexes) {
+BlockFans BuildFans(const Segment *segments, std::vector<std::uint8_t> &fanOf, const FanApexes &apexes) {
     BlockFans fans;
-    fans.fanOf = std::move(fanOf);
-    const std::size_t count = fans.fanOf.size();
+    const std::size_t count = fanOf.size();
     std::vector<std::vector<std::uint32_t>> members(std::size_t(apexes.count) + 1);
     for (std::size_t i = 0; i < count; ++i) {
-        const std::uint8_t f = fans.fanOf[i];
+        const std::uint8_t f = fanOf[i];
         members[f < apexes.count ? f : apexes.count].push_back(std::uint32_t(i));
     }
     for (int f = 0; f < apexes.count; ++f) {
@@ -120,16 +119,15 @@ BlockFans BuildFans(const Segment *segments, std::vector<std::uint8_t> fanOf, co
     // near it.
     for (std::uint32_t i : members.back()) AddLoose(fans, segments[i]);
     for (std::size_t i = 0; i < count; ++i) {
-        if (fans.fanOf[i] >= fans.fans.size()) fans.fanOf[i] = BlockFans::kLoose;
-        fans.looseCount += fans.fanOf[i] == BlockFans::kLoose;
+        if (fanOf[i] >= fans.fans.size()) fanOf[i] = BlockFans::kLoose;
+        fans.looseCount += fanOf[i] == BlockFans::kLoose;
     }
     return fans;
 }
 
-BlockFans GrowFans(const BlockFans &old, const Segment *segments, std::vector<std::uint8_t> fanOf,
+BlockFans GrowFans(const BlockFans &old, const Segment *segments, std::vector<std::uint8_t> &fanOf,
                    const FanApexes &apexes, const std::vector<std::pair<std::size_t, std::size_t>> &added) {
     BlockFans fans;
-    fans.fanOf = std::move(fanOf);
     fans.fans = old.fans;
     fans.looseBox = old.looseBox;
     fans.looseUnbounded = old.looseUnbounded;
@@ -138,11 +136,11 @@ BlockFans GrowFans(const BlockFans &old, const Segment *segments, std::vector<st
     std::vector<std::vector<std::uint32_t>> fresh(fans.fans.size());
     for (const auto &range : added)
         for (std::size_t i = range.first; i < range.first + range.second; ++i) {
-            const std::uint8_t f = fans.fanOf[i];
+            const std::uint8_t f = fanOf[i];
             if (f < fans.fans.size()) {
                 fresh[f].push_back(std::uint32_t(i));
             } else {
-                fans.fanOf[i] = BlockFans::kLoose;
+                fanOf[i] = BlockFans::kLoose;
                 AddLoose(fans, segments[i]);
             }
         }
@@ -165,9 +163,9 @@ BlockFans GrowFans(const BlockFans &old, const Segment *segments, std::vector<st
             fan.originReach = std::max(fan.originReach, w.originReach);
         }
     }
-    for (std::size_t i = 0; i < fans.fanOf.size(); ++i) {
-        if (fans.fanOf[i] >= fans.fans.size()) fans.fanOf[i] = BlockFans::kLoose;
-        fans.looseCount += fans.fanOf[i] == BlockFans::kLoose;
+    for (std::size_t i = 0; i < fanOf.size(); ++i) {
+        if (fanOf[i] >= fans.fans.size()) fanOf[i] = BlockFans::kLoose;
+        fans.looseCount += fanOf[i] == BlockFans::kLoose;
     }
     return fans;
 }

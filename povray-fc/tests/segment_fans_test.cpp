@@ -80,6 +80,7 @@ TEST(SegmentFans, ConeNeverMissesAHullItsSegmentsMeet) {
     for (int block = 0; block < 200; ++block) {
         RecordedBlock b = BlockRays(rng);
         const BlockFans fans = BuildFans(b.segments.data(), b.fanOf, b.apexes);
+    const std::vector<std::uint8_t> &fanOf = b.fanOf;
         for (int k = 0; k < 200; ++k) {
             const Vec3 lo{pos(rng), pos(rng) * 0.5 + 5, pos(rng)};
             const Hull h = MakeHull(Box{lo, lo + Vec3{size(rng), size(rng), size(rng)}});
@@ -87,7 +88,7 @@ TEST(SegmentFans, ConeNeverMissesAHullItsSegmentsMeet) {
                 const bool cone = FanMayMeet(fans.fans[f], h);
                 fanRejects += !cone;
                 for (std::size_t i = 0; i < b.segments.size(); ++i) {
-                    if (fans.fanOf[i] != f || !MayMeet(b.segments[i], h)) continue;
+                    if (fanOf[i] != f || !MayMeet(b.segments[i], h)) continue;
                     ++checked;
                     ASSERT_TRUE(cone) << "block " << block << " fan " << f << " segment " << i;
                 }
@@ -119,11 +120,12 @@ TEST(SegmentFans, GrowingAFanKeepsHoldingItsSegments) {
             a.fanOf[i] = a.apexes.OriginFan(o);
         }
         const BlockFans grown = GrowFans(fans, a.segments.data(), a.fanOf, a.apexes, {{first, a.segments.size() - first}});
+        const std::vector<std::uint8_t> &fanOf = a.fanOf;
         for (int k = 0; k < 100; ++k) {
             const Vec3 lo{pos(rng), pos(rng) * 0.5 + 5, pos(rng)};
             const Hull h = MakeHull(Box{lo, lo + Vec3{size(rng), size(rng), size(rng)}});
             for (std::size_t i = 0; i < a.segments.size(); ++i) {
-                const std::uint8_t f = grown.fanOf[i];
+                const std::uint8_t f = fanOf[i];
                 // Invariant: old and new members alike stay inside their (grown) cone.
                 if (f != BlockFans::kLoose && MayMeet(a.segments[i], h)) {
                     ASSERT_TRUE(FanMayMeet(grown.fans[f], h)) << block << " " << i;

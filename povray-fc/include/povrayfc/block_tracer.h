@@ -66,7 +66,7 @@ class BlockTracer {
     bool active_ = false;   // this block is under fc (mode != kIdle)
     bool record_ = false;   // mode kRecord: samples and segments are kept
     std::uint32_t serial_ = 0;
-    const BlockRecord *old_ = nullptr;       // the stored record, when it may be reused from
+    BlockRecord *old_ = nullptr;             // the stored record, when it may be reused from
     std::vector<std::uint8_t> oldDirty_;     // per old sample
     std::vector<std::uint32_t> oldIndex_;    // open addressing: old sample index + 1, 0 = empty
     std::uint32_t oldMask_ = 0;

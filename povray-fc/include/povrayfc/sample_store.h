@@ -42,7 +42,11 @@ struct BlockRecord {
     std::vector<Segment> segments;
     std::vector<float> pixels;  // 5 floats per pixel, row by row
     FanApexes apexes;           // the camera and light points the segments are bundled by
-    BlockFans fans;             // cones around those bundles, for a quick "nothing near"
+    std::vector<std::uint8_t> fanOf;  // per segment: its bundle (FanApexes number) or kLoose
+    // Cones around those bundles, for a quick "nothing near", built when a frame first
+    // tests the block (a block no change comes near, or a full frame, never pays).
+    BlockFans fans;
+    bool fansBuilt = false;
     bool hasEverything = false; // a sample depends on everything (any change dirties it)
 
     int Width() const { return right - left + 1; }
@@ -53,7 +57,7 @@ struct BlockRecord {
     }
     std::size_t MemoryBytes() const {
         return sizeof(*this) + samples.capacity() * sizeof(StoredSample) + segments.capacity() * sizeof(Segment) +
-               pixels.capacity() * sizeof(float) + fans.MemoryBytes();
+               pixels.capacity() * sizeof(float) + fanOf.capacity() + fans.MemoryBytes();
     }
 };
 
@@ -67,9 +71,8 @@ class SampleStore {
 
     std::size_t BlockCount() const { return blocks_.size(); }
     // The stored record of block `serial`, or nullptr (never rendered, or out of range).
-    const BlockRecord *Find(std::size_t serial) const {
-        return serial < blocks_.size() ? blocks_[serial].get() : nullptr;
-    }
+    // Mutable for the thread rendering that block (it builds the record's cones).
+    BlockRecord *Find(std::size_t serial) const { return serial < blocks_.size() ? blocks_[serial].get() : nullptr; }
     // Replaces block `serial`'s record (ignored out of range).
     void Put(std::size_t serial, std::unique_ptr<BlockRecord> record) {
         if (serial < blocks_.size()) blocks_[serial] = std::move(record);

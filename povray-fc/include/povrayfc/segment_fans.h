@@ -48,27 +48,26 @@ struct BlockFans {
     static constexpr std::size_t kMaxFans = FanApexes::kMax;
 
     std::vector<SegmentFan> fans;     // by fan number; a fan without segments has reach < 0
-    std::vector<std::uint8_t> fanOf;  // per segment: its fan, or kLoose
-    std::size_t looseCount = 0;
+    std::size_t looseCount = 0;       // segments in no fan
     Box looseBox;                     // around the loose segments of finite length
     bool looseUnbounded = false;      // some loose segment has no end (hit nothing)
 
-    std::size_t MemoryBytes() const { return fans.capacity() * sizeof(SegmentFan) + fanOf.capacity(); }
+    std::size_t MemoryBytes() const { return fans.capacity() * sizeof(SegmentFan); }
 };
 
 // Whether a loose segment is held by BlockFans::looseBox: rays that hit nothing end at
 // POV-Ray's "infinity" (BOUND_HUGE, 2e10), and a box around them would cover everything.
 inline bool InLooseBox(const Segment &s) { return s.length < 1e9f; }
 
-// The cones around the segments of each fan, given each segment's fan (from the
-// recording) and the fans' apexes. Takes over `fanOf`.
-BlockFans BuildFans(const Segment *segments, std::vector<std::uint8_t> fanOf, const FanApexes &apexes);
+// The cones around the segments of each fan, given each segment's fan (`fanOf`, from the
+// recording; numbers without an apex are made kLoose) and the fans' apexes.
+BlockFans BuildFans(const Segment *segments, std::vector<std::uint8_t> &fanOf, const FanApexes &apexes);
 
 // The fans of a replayed block, cheaply: `old` were the fans of the segments it kept, and
 // the segments in `added` (first index, count) were traced anew; each fan only widens to
 // hold its new members. (Cones then never narrow: the caller rebuilds from scratch when
 // much of a block is new.)
-BlockFans GrowFans(const BlockFans &old, const Segment *segments, std::vector<std::uint8_t> fanOf,
+BlockFans GrowFans(const BlockFans &old, const Segment *segments, std::vector<std::uint8_t> &fanOf,
                    const FanApexes &apexes, const std::vector<std::pair<std::size_t, std::size_t>> &added);
 
 // True when a segment within `fan` may meet `hull` (conservative, including the float
