@@ -146,15 +146,15 @@ void FrameCoherence::PlanFrame(const FrameSetup &setup, const SceneSignature &si
     }
 
     if (policy_.Paused()) {
-        // Resume as soon as the change from the last frame is local: the next frame can
-        // then reuse what this one records.
-        if (change.newSequence || !change.fullReason.empty()) {
-            current_.fullReason = change.fullReason + " (recording paused)";
+        // Resume when the change from the last frame is local (and any back-off is over):
+        // the next frame can then reuse what this one records.
+        if (!policy_.ResumeWith(!change.newSequence && change.fullReason.empty())) {
+            current_.fullReason = (change.fullReason.empty() ? std::string("recording did not pay off")
+                                                             : change.fullReason) + " (recording paused)";
             store_.reset();
             plan_.mode = FramePlan::Mode::kIdle;
             return;
         }
-        policy_.Resume();
         change.newSequence = true;
         change.fullReason = "recording resumed";
     }
@@ -192,7 +192,11 @@ void FrameCoherence::EndFrame(std::uint64_t raysTraced) {
         current_.samplesTraced = counters_.tracedSamples.load();
         current_.samplesReused = counters_.reusedSamples.load();
         current_.storeBytes = store_ ? store_->MemoryBytes() : 0;
-        if (plan_.mode == FramePlan::Mode::kRecord) policy_.AfterRecordedFrame(wastedIfFull_);
+        if (plan_.mode == FramePlan::Mode::kRecord) {
+            const double taken = double(current_.samplesTraced + current_.samplesReused);
+            const bool coherent = !plan_.everythingDirty;
+            policy_.AfterRecordedFrame(wastedIfFull_, coherent && taken > 0 ? double(current_.samplesTraced) / taken : 0.0);
+        }
     }
     bookkeeping_ += std::chrono::steady_clock::now() - start;
     current_.bookkeepingSeconds = std::chrono::duration<double>(bookkeeping_).count();

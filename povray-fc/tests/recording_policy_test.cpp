@@ -1,0 +1,52 @@
+// Tests for RecordingPolicy: when recording pauses and when it resumes.
+#include <gtest/gtest.h>
+
+#include "povrayfc/recording_policy.h"
+
+namespace povrayfc {
+namespace {
+
+TEST(RecordingPolicy, FullFramesPauseUntilALocalChange) {
+    RecordingPolicy p;
+    p.AfterRecordedFrame(true, 0);
+    EXPECT_FALSE(p.Paused());  // one full frame is not a pattern
+    p.AfterRecordedFrame(true, 0);
+    ASSERT_TRUE(p.Paused());
+    EXPECT_FALSE(p.ResumeWith(false));  // the camera still moves
+    EXPECT_TRUE(p.ResumeWith(true));    // it stopped: record again at once
+    EXPECT_FALSE(p.Paused());
+}
+
+TEST(RecordingPolicy, CoherentFramesThatPayResetTheStreak) {
+    RecordingPolicy p;
+    p.AfterRecordedFrame(true, 0);
+    p.AfterRecordedFrame(false, 0.05);
+    p.AfterRecordedFrame(true, 0);
+    EXPECT_FALSE(p.Paused());
+}
+
+TEST(RecordingPolicy, BusyFramesBackOffLongerEachTime) {
+    RecordingPolicy p;
+    int waited[3];
+    for (int round = 0; round < 3; ++round) {
+        p.AfterRecordedFrame(false, 0.95);
+        p.AfterRecordedFrame(false, 0.97);
+        ASSERT_TRUE(p.Paused());
+        waited[round] = 0;
+        while (!p.ResumeWith(true)) ++waited[round];
+    }
+    // Invariant: each fruitless try doubles the pause (2, 4, 8 frames).
+    EXPECT_EQ(waited[0], 2);
+    EXPECT_EQ(waited[1], 4);
+    EXPECT_EQ(waited[2], 8);
+    // A frame that pays resets the back-off.
+    p.AfterRecordedFrame(false, 0.1);
+    p.AfterRecordedFrame(false, 0.95);
+    p.AfterRecordedFrame(false, 0.95);
+    int wait = 0;
+    while (!p.ResumeWith(true)) ++wait;
+    EXPECT_EQ(wait, 2);
+}
+
+}  // namespace
+}  // namespace povrayfc
