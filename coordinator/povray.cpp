@@ -19,8 +19,10 @@ const char *const kFrameCoherenceFeature = "Frame coherence";
 namespace {
 
 const char *const kProbeMarker = "fc-master probe: options read";
+const char *const kProbeShellout = "/bin/true";
 
-// Run argv to completion (or timeout), collecting all output lines.
+} // namespace
+
 bool run_collect(const std::vector<std::string> &argv, const std::string &cwd, double timeout,
                  std::vector<std::string> &lines, int &status, std::string &err)
 {
@@ -47,6 +49,8 @@ bool run_collect(const std::vector<std::string> &argv, const std::string &cwd, d
     return true;
 }
 
+namespace {
+
 // Join POV-Ray's 80-column wrapped physical lines starting at index i until `until` appears.
 std::string join_until(const std::vector<std::string> &lines, size_t i, const char *until)
 {
@@ -63,7 +67,8 @@ bool is_noise(const std::string &line)
 {
     return line.find("cannot open the user configuration file") != std::string::npos ||
            starts_with(line, "Rendered ") || starts_with(line, "----") ||
-           starts_with(line, "====") || line.find(kProbeMarker) != std::string::npos;
+           starts_with(line, "====") || line.find(kProbeMarker) != std::string::npos ||
+           line.find(kProbeShellout) != std::string::npos;
 }
 
 } // namespace
@@ -94,10 +99,19 @@ bool probe_scene(const std::string &renderer, const std::vector<std::string> &op
     std::vector<std::string> argv = {renderer};
     argv.insert(argv.end(), options.begin(), options.end());
     argv.insert(argv.end(), {"-D", "+FT", "-UA", "+HI" + inc});
+    for (const char *cmd : kShelloutOptions)
+        argv.push_back(std::string(cmd) + "=");
+    argv.push_back(std::string("Pre_Scene_Command=") + kProbeShellout);
+    argv.push_back("Pre_Scene_Return=i");
     std::vector<std::string> lines;
     int status = 0;
     if (!run_collect(argv, cwd, timeout, lines, status, err))
         return false;
+    // POV-Ray says so when povray.conf forbids shell-outs.
+    info.shellouts_permitted = true;
+    for (const std::string &l : lines)
+        if (l.find(std::string("shellout '") + kProbeShellout + "' prohibited") != std::string::npos)
+            info.shellouts_permitted = false;
 
     bool marker = false, have_res = false, have_out = false;
     int subset_count = 1;
@@ -217,31 +231,18 @@ bool renderer_version(const std::string &renderer, bool &has_fc, std::string &fi
     return true;
 }
 
-bool parse_rendering_frame(const std::string &line, int &k, int &n)
-{
-    // Anywhere in the line: output of POV-Ray's threads can share a line.
-    const char *p = strstr(line.c_str(), "Rendering frame ");
-    return p && sscanf(p, "Rendering frame %d of %d", &k, &n) == 2;
-}
+const char *const kShelloutOptions[6] = {"Pre_Scene_Command", "Pre_Frame_Command",
+                                         "Post_Frame_Command", "Post_Scene_Command",
+                                         "User_Abort_Command", "Fatal_Error_Command"};
 
-bool parse_rays(const std::string &line, double &rays)
+bool is_scene_error(const std::vector<std::string> &tail)
 {
-    return sscanf(line.c_str(), "Rays: %lf", &rays) == 1;
-}
-
-bool parse_aa(const std::string &line, int &method)
-{
-    std::string t = trim(line);
-    if (!starts_with(t, "Antialiasing......"))
-        return false;
-    const char *m = strstr(t.c_str(), "(Method ");
-    method = m ? atoi(m + 8) : 0;
-    return true;
-}
-
-bool parse_rendered(const std::string &line, int &done, int &total)
-{
-    return sscanf(line.c_str(), "Rendered %d of %d pixels", &done, &total) == 2;
+    for (const std::string &l : tail)
+        if (l.find("Parse Error") != std::string::npos ||
+            l.find("Fatal error in parser") != std::string::npos ||
+            l.find("Fatal error in renderer") != std::string::npos)
+            return true;
+    return false;
 }
 
 std::string error_excerpt(const std::vector<std::string> &tail)

@@ -31,14 +31,21 @@ struct SceneInfo {
     std::string output_name;        // POV-Ray's output file name for the first frame
     std::string stem;               // output_name without frame number and ".tga"
     int digits = 0;                 // frame number digits in names (0 for a still)
+    bool shellouts_permitted = false;   // povray.conf allows shell-out commands
 };
 
 // Run `renderer options... -D +FT -UA +HI<probe.inc>` in cwd (tmpdir holds the probe include,
-// it must be readable under POV-Ray's I/O restrictions, e.g. below /tmp). On success fills
-// info; on failure err holds POV-Ray's own error lines.
+// it must be readable under POV-Ray's I/O restrictions, e.g. below /tmp), with the user's
+// shell-outs replaced (the probe must not run them) and a harmless pre-scene command that
+// tells whether povray.conf allows shell-outs. On success fills info; on failure err holds
+// POV-Ray's own error lines.
 bool probe_scene(const std::string &renderer, const std::vector<std::string> &options,
                  const std::string &cwd, const std::string &tmpdir, double timeout,
                  SceneInfo &info, std::string &err);
+
+// Run argv to completion (or timeout) in cwd, collecting its output lines and wait status.
+bool run_collect(const std::vector<std::string> &argv, const std::string &cwd, double timeout,
+                 std::vector<std::string> &lines, int &status, std::string &err);
 
 // Run `renderer --version`; true if it ran. has_fc tells whether it supports frame coherence.
 bool renderer_version(const std::string &renderer, bool &has_fc, std::string &first_line,
@@ -51,14 +58,16 @@ std::string frame_file_name(const std::string &stem, int digits, int frame);
 // Digits POV-Ray uses for frame numbers: those of the final frame (+1 when cyclic).
 int frame_digits(int final_frame, bool cyclic);
 
-// Parsers for one physical line of POV-Ray's console output; each returns true on a match.
-bool parse_rendering_frame(const std::string &line, int &k, int &n);  // "Rendering frame k of n"
-bool parse_rays(const std::string &line, double &rays);               // "Rays:   12345 ..."
-bool parse_aa(const std::string &line, int &method);                  // "Antialiasing....On (Method 2"
-bool parse_rendered(const std::string &line, int &done, int &total);  // "Rendered 10 of 20 pixels"
+// POV-Ray's shell-out options. Slaves' renderers get each of them set empty: the master runs
+// the commands, once per scene and once per assembled frame.
+extern const char *const kShelloutOptions[6];
 
 // From the tail of a failed run, the lines that explain it (from the first error line on),
 // without POV-Ray's noise (config-file warnings, statistics).
 std::string error_excerpt(const std::vector<std::string> &tail);
+
+// Whether a failed run's output says the scene is at fault (a parse error, #error, a fatal
+// error of the parser or renderer), as opposed to the host (a crash, a missing program).
+bool is_scene_error(const std::vector<std::string> &tail);
 
 } // namespace fc

@@ -222,16 +222,16 @@ std::string LineSplitter::rest()
 }
 
 bool start_child(const std::vector<std::string> &argv, const std::string &cwd, int nice_inc,
-                 Child &child, std::string &err)
+                 Child &child, std::string &err, const std::vector<std::pair<int, int>> &extra)
 {
-    int fds[2];
-    if (pipe2(fds, O_CLOEXEC) != 0)
+    int out[2];
+    if (pipe2(out, O_CLOEXEC) != 0)
         return sys_fail(err, "pipe2");
     pid_t parent = getpid();
     pid_t pid = fork();
     if (pid < 0) {
-        close(fds[0]);
-        close(fds[1]);
+        close(out[0]);
+        close(out[1]);
         return sys_fail(err, "fork");
     }
     if (pid == 0) {
@@ -246,8 +246,16 @@ bool start_child(const std::vector<std::string> &argv, const std::string &cwd, i
         sigset_t none;
         sigemptyset(&none);
         sigprocmask(SIG_SETMASK, &none, nullptr);
-        dup2(fds[1], 1);
-        dup2(fds[1], 2);
+        // Move the inherited descriptors out of the way first: a source may sit on a number
+        // another one is mapped to.
+        std::vector<std::pair<int, int>> moved;
+        for (const auto &m : extra)
+            moved.push_back({m.first, fcntl(m.second, F_DUPFD_CLOEXEC, 100)});
+        for (const auto &m : moved)
+            if (m.second < 0 || dup2(m.second, m.first) < 0)
+                _exit(126);
+        dup2(out[1], 1);
+        dup2(out[1], 2);
         int devnull = open("/dev/null", O_RDONLY);
         if (devnull >= 0)
             dup2(devnull, 0);
@@ -265,10 +273,10 @@ bool start_child(const std::vector<std::string> &argv, const std::string &cwd, i
         dprintf(2, "fc: cannot run %s: %s\n", av[0], strerror(errno));
         _exit(127);
     }
-    close(fds[1]);
-    fcntl(fds[0], F_SETFL, fcntl(fds[0], F_GETFL) | O_NONBLOCK);
+    close(out[1]);
+    fcntl(out[0], F_SETFL, fcntl(out[0], F_GETFL) | O_NONBLOCK);
     child.pid = pid;
-    child.fd = fds[0];
+    child.fd = out[0];
     return true;
 }
 
