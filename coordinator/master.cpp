@@ -117,7 +117,7 @@ private:
     void cancel_jobs(const std::vector<Job> &jobs);
     bool frame_finished(int index);
     void slave_gone(SlaveInfo &s, const std::string &why, bool respawn);
-    void leave_out_host(int dtid);
+    void leave_out_host(int dtid, const std::string &last_error);
     void check_timeouts();
     void progress();
     void fatal(const std::string &msg);
@@ -142,6 +142,7 @@ private:
     bool quit_early_ = false;           // a shell-out asked to stop (exit status 0)
     bool skip_post_scene_ = false;      // ... and to skip the rest, Post_Scene included
     int skipped_ = 0;                   // frames a Pre_Frame_Command skipped
+    int max_frames_held_ = 0;           // most frames in the master's memory at once
     int exit_code_ = 0;
     std::string vm_kind_ = "none";      // "private" or "running" once started
     int resumed_ = 0, rendered_ = 0;
@@ -543,6 +544,7 @@ void Master::on_frame(int src)
             fatal(strf("frame %d from host %s: %s", fr.frame, host.c_str(), err.c_str()));
             return;
         }
+        max_frames_held_ = std::max(max_frames_held_, int(assembly_->pending()));
         FrameStat &fs = frame_stats_[size_t(idx)];
         fs.rays += std::max(0.0, fr.rays);
         fs.seconds += seconds;
@@ -596,19 +598,19 @@ void Master::on_fail(int src)
     fprintf(stderr, "fc-master: warning: frame %d failed on host %s (%s): %s; trying again\n",
             f.frame, host.c_str(), what.c_str(), first_line(f.message).c_str());
     if (s && cluster_.host_failed(*s))
-        leave_out_host(s->dtid);
+        leave_out_host(s->dtid, first_line(f.message));
     dispatch();
 }
 
 // A host whose jobs failed Cluster::kHostFailures times gets no more work.
-void Master::leave_out_host(int dtid)
+void Master::leave_out_host(int dtid, const std::string &last_error)
 {
     HostInfo *h = cluster_.host(dtid);
     if (!h)
         return;
     report_.clear_line();
-    fprintf(stderr, "fc-master: warning: host %s failed %d jobs and is left out\n",
-            h->name.c_str(), h->failures);
+    fprintf(stderr, "fc-master: warning: host %s failed %d jobs and is left out (last: %s)\n",
+            h->name.c_str(), h->failures, last_error.c_str());
     host_stat(h->name).excluded = true;
     for (auto &kv : cluster_.slaves()) {
         SlaveInfo &s = kv.second;
@@ -861,6 +863,12 @@ void Master::finish(bool ok)
         head += strf("  \"division\": \"%s\",\n", division_name(opt_.division));
         head += strf("  \"tile\": %d,\n  \"tiles\": %d,\n  \"width\": %d,\n  \"height\": %d,\n",
                      opt_.tile, int(tiles_.size()), scene_.width, scene_.height);
+        std::string rects;
+        for (size_t k = 0; k < tiles_.size(); k++)
+            rects += strf("%s[%d, %d, %d, %d]", k ? ", " : "", tiles_[k].x0, tiles_[k].y0,
+                          tiles_[k].x1, tiles_[k].y1);
+        head += "  \"tile_rects\": [" + rects + "],\n";
+        head += strf("  \"max_frames_held\": %d,\n", max_frames_held_);
         head += strf("  \"frame_coherence\": %s,\n", extra_.empty() ? "false" : "true");
         head += strf("  \"virtual_machine\": \"%s\",\n  \"hosts_used\": %d,\n",
                      vm_kind_.c_str(), int(cluster_.hosts().size()));

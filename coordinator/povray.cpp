@@ -145,13 +145,7 @@ bool probe_scene(const std::string &renderer, const std::vector<std::string> &op
         }
     }
     if (!marker || !have_res || !have_out) {
-        std::string excerpt = error_excerpt(lines);
-        if (excerpt.empty()) {
-            // Nothing recognisable: show the end of the output.
-            for (size_t k = lines.size() > 8 ? lines.size() - 8 : 0; k < lines.size(); k++)
-                if (!is_noise(lines[k]))
-                    excerpt += lines[k] + "\n";
-        }
+        std::string excerpt = failure_excerpt(lines);
         err = strf("%s rejected the scene or its options (%s):\n%s", renderer.c_str(),
                   describe_status(status).c_str(), excerpt.c_str());
         return false;
@@ -234,6 +228,16 @@ bool renderer_version(const std::string &renderer, bool &has_fc, std::string &fi
 const char *const kShelloutOptions[6] = {"Pre_Scene_Command", "Pre_Frame_Command",
                                          "Post_Frame_Command", "Post_Scene_Command",
                                          "User_Abort_Command", "Fatal_Error_Command"};
+
+std::string failure_excerpt(const std::vector<std::string> &tail)
+{
+    std::string excerpt = error_excerpt(tail);
+    if (excerpt.empty())
+        for (size_t k = tail.size() > 8 ? tail.size() - 8 : 0; k < tail.size(); k++)
+            if (!is_noise(tail[k]))
+                excerpt += tail[k] + "\n";
+    return excerpt;
+}
 
 bool is_scene_error(const std::vector<std::string> &tail)
 {

@@ -66,6 +66,9 @@ extern const char *const kShelloutOptions[6];
 // without POV-Ray's noise (config-file warnings, statistics).
 std::string error_excerpt(const std::vector<std::string> &tail);
 
+// error_excerpt, or when no line says "error", the last lines that are not noise.
+std::string failure_excerpt(const std::vector<std::string> &tail);
+
 // Whether a failed run's output says the scene is at fault (a parse error, #error, a fatal
 // error of the parser or renderer), as opposed to the host (a crash, a missing program).
 bool is_scene_error(const std::vector<std::string> &tail);

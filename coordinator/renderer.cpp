@@ -144,17 +144,14 @@ bool Renderer::fail(RendererFailure &failure, bool scene_error, int status, cons
 void Renderer::classify_exit(int status, RendererFailure &failure)
 {
     std::vector<std::string> tail(tail_.begin(), tail_.end());
-    std::string excerpt = error_excerpt(tail);
+    std::string excerpt = failure_excerpt(tail);
     bool exited = WIFEXITED(status);
     int code = exited ? WEXITSTATUS(status) : -1;
     failure.status = status;
     failure.scene_error = exited && code != 0 && code != 126 && code != 127 &&
                           is_scene_error(tail);
-    if (excerpt.empty())
-        for (const std::string &l : tail)
-            excerpt += l + "\n";
-    failure.message = strf("the renderer stopped (%s) during frame %d\n", describe_status(status).c_str(),
-                           frame_) + excerpt;
+    failure.message = excerpt.empty() ? strf("the renderer stopped during frame %d", frame_)
+                                      : excerpt;
 }
 
 bool Renderer::pump(std::vector<FrameRecord> &done, RendererFailure &failure)
