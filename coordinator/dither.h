@@ -9,8 +9,8 @@
 // itself. The master then repeats Targa::Write's loop (encoding.cpp: getOffset, quantize,
 // setError, pixel by pixel in raster order) with the same float arithmetic.
 //
-// Quantizer payload (little-endian): int32 method (kPOVList_DitherMethod_*: 2 = d1, 3 = d2,
-// 4 = fs), 255 float thresholds, 256 float levels.
+// Quantizer payload (little-endian): int32 method (kPOVList_DitherMethod_*: 1 = d1, 2 = d2,
+// 3 = fs), 255 float thresholds, 256 float levels.
 #pragma once
 
 #include <cstddef>
@@ -22,7 +22,7 @@ namespace fc {
 
 class Quantizer {
 public:
-    static const int kDiffusion1D = 2, kDiffusion2D = 3, kFloydSteinberg = 4;
+    static const int kDiffusion1D = 1, kDiffusion2D = 2, kFloydSteinberg = 3;
 
     // Read the quantizer payload; false with err when malformed.
     bool parse(const uint8_t *data, size_t size, std::string &err);
