@@ -8,8 +8,7 @@
 #include <cstdio>
 #include <cstring>
 
-#include <OpenImageIO/imageio.h>
-
+#include "image_io.h"
 #include "povray.h"
 #include "util.h"
 
@@ -36,13 +35,8 @@ bool FrameAssembly::exists_complete(int index) const
     std::string path = final_path(index);
     if (!file_exists(path))
         return false;
-    auto in = OIIO::ImageInput::open(path);
-    if (!in)
-        return false;
-    const OIIO::ImageSpec &spec = in->spec();
-    bool ok = spec.width == width_ && spec.height == height_ && spec.nchannels >= 3;
-    in->close();
-    return ok;
+    int w = 0, h = 0, channels = 0;
+    return image_size(path, w, h, channels) && w == width_ && h == height_ && channels >= 3;
 }
 
 void FrameAssembly::remove_stale_temps() const
@@ -111,16 +105,7 @@ bool FrameAssembly::write(int index, std::string &err)
     if (!p.values.empty())
         p.quantizer->dither(p.values, width_, height_, p.rgb);
     std::string tmp = temp_path(index), dst = final_path(index);
-    auto out = OIIO::ImageOutput::create("tga");
-    if (!out) {
-        err = "OpenImageIO has no Targa writer: " + OIIO::geterror();
-        return false;
-    }
-    OIIO::ImageSpec spec(width_, height_, 3, OIIO::TypeDesc::UINT8);
-    spec.attribute("compression", "none");
-    if (!out->open(tmp, spec) || !out->write_image(OIIO::TypeDesc::UINT8, p.rgb.data()) ||
-        !out->close()) {
-        err = "writing " + tmp + ": " + out->geterror();
+    if (!write_targa(tmp, width_, height_, p.rgb.data(), err)) {
         unlink(tmp.c_str());
         return false;
     }

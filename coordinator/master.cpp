@@ -9,6 +9,7 @@
 // frames, which are written as soon as they are complete (assembly.h). Timeouts, pings and
 // progress run on a clock, whatever the traffic.
 #include <signal.h>
+#include <sys/resource.h>
 #include <sys/stat.h>
 #include <unistd.h>
 
@@ -22,11 +23,13 @@
 #include <map>
 #include <memory>
 #include <set>
+#include <thread>
 
 #include <pvm3.h>
 
 #include "assembly.h"
 #include "cluster.h"
+#include "image_io.h"
 #include "master_options.h"
 #include "povray.h"
 #include "protocol.h"
@@ -143,6 +146,7 @@ private:
     bool skip_post_scene_ = false;      // ... and to skip the rest, Post_Scene included
     int skipped_ = 0;                   // frames a Pre_Frame_Command skipped
     int max_frames_held_ = 0;           // most frames in the master's memory at once
+    long messages_ = 0;                 // messages received
     int exit_code_ = 0;
     std::string vm_kind_ = "none";      // "private" or "running" once started
     int resumed_ = 0, rendered_ = 0;
@@ -219,21 +223,30 @@ bool Master::probe()
         fprintf(stderr, "fc-master: %s\n", err.c_str());
         return false;
     }
+    // The three questions to POV-Ray run at once: each start of povray-fc costs a few
+    // tenths of a second.
     double limit = std::max(30.0, opt_.timeout);
-    if (!probe_scene(renderer_, opt_.pov, cwd_, tmpdir_, limit, scene_, err) ||
-        !probe_shellouts(renderer_, opt_.pov, cwd_, tmpdir_, limit, shellouts_, err)) {
+    std::string scene_err, shell_err, version_err;
+    bool scene_ok = false, shell_ok = false, version_ok = true, has_fc = false;
+    std::thread shell([&] {
+        shell_ok = probe_shellouts(renderer_, opt_.pov, cwd_, tmpdir_, limit, shellouts_, shell_err);
+    });
+    std::thread version([&] {
+        std::string first;
+        if (opt_.fc)
+            version_ok = renderer_version(renderer_, has_fc, first, version_err);
+    });
+    scene_ok = probe_scene(renderer_, opt_.pov, cwd_, tmpdir_, limit, scene_, scene_err);
+    shell.join();
+    version.join();
+    err = !scene_ok ? scene_err : !shell_ok ? shell_err : version_err;
+    if (!scene_ok || !shell_ok || !version_ok) {
         fprintf(stderr, "fc-master: %s", err.c_str());
         if (err.empty() || err.back() != '\n')
             fputc('\n', stderr);
         return false;
     }
     if (opt_.fc) {
-        bool has_fc = false;
-        std::string first;
-        if (!renderer_version(renderer_, has_fc, first, err)) {
-            fprintf(stderr, "fc-master: %s\n", err.c_str());
-            return false;
-        }
         if (has_fc)
             extra_.push_back(kFrameCoherenceOption);
         else
@@ -812,6 +825,7 @@ int Master::loop()
         if (buf > 0) {
             int len = 0, tag = 0, src = 0;
             pvm_bufinfo(buf, &len, &tag, &src);
+            messages_++;
             debug_log("recv %s from t%x (%d bytes)", tag_name(tag), unsigned(src), len);
             switch (tag) {
             case FC_HELLO: on_hello(src); break;
@@ -872,6 +886,13 @@ void Master::finish(bool ok)
         head += strf("  \"frame_coherence\": %s,\n", extra_.empty() ? "false" : "true");
         head += strf("  \"virtual_machine\": \"%s\",\n  \"hosts_used\": %d,\n",
                      vm_kind_.c_str(), int(cluster_.hosts().size()));
+        struct rusage ru;
+        getrusage(RUSAGE_SELF, &ru);
+        double cpu = double(ru.ru_utime.tv_sec) + ru.ru_utime.tv_usec / 1e6 +
+                     double(ru.ru_stime.tv_sec) + ru.ru_stime.tv_usec / 1e6;
+        head += strf("  \"master_cpu\": %.3f,\n  \"master_max_rss_kb\": %ld,\n", cpu,
+                     long(ru.ru_maxrss));
+        head += strf("  \"messages\": %ld,\n", messages_);
         head += strf("  \"success\": %s,\n", ok ? "true" : "false");
         head += strf("  \"elapsed\": %.3f,\n", start_ > 0 ? now() - start_ : 0.0);
         head += strf("  \"frames_total\": %d,\n  \"frames_rendered\": %d,\n  \"frames_resumed\": %d,\n",
@@ -884,6 +905,7 @@ void Master::finish(bool ok)
 
 int Master::run()
 {
+    debug_log("master starts");
     if (!resolve_programs() || !probe() || !prepare_output()) {
         if (!tmpdir_.empty())
             remove_tree(tmpdir_);
@@ -903,15 +925,19 @@ int Master::run()
         fprintf(stderr, "fc-master: %s\n", pre.message.c_str());
         return pre.action == ShelloutResult::Quit ? 0 : 1;
     }
+    debug_log("probes done");
     if (!start_cluster()) {
         cluster_.stop();
         return 1;
     }
+    debug_log("slaves spawned");
     int rc = loop();
+    debug_log("loop done");
     double elapsed = start_ > 0 ? now() - start_ : 0;
     if (rc != 0)
         shutdown_slaves();
     cluster_.stop();
+    debug_log("virtual machine stopped");
     if (rc == 0 && !failed_ && !skip_post_scene_) {
         ShelloutResult post = shellouts_.run(Shellouts::PostScene, scene_.frames.back(),
                                              assembly_->final_path(int(scene_.frames.size()) - 1));
@@ -937,6 +963,7 @@ int Master::run()
 int main(int argc, char **argv)
 {
     Options opt = parse_options(argc, argv);
+    preload_image_io();     // OpenImageIO loads while POV-Ray is probed
     install_signal_handlers(on_signal);
     Master master(opt);
     return master.run();

@@ -12,6 +12,7 @@
 #include <time.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <cerrno>
 #include <climits>
 #include <cstdio>
@@ -224,6 +225,21 @@ std::string LineSplitter::rest()
 bool start_child(const std::vector<std::string> &argv, const std::string &cwd, int nice_inc,
                  Child &child, std::string &err, const std::vector<std::pair<int, int>> &extra)
 {
+    // Everything the child needs is prepared here: after fork() the child of a threaded
+    // process may only make async-signal-safe calls (no allocation).
+    std::vector<char *> av;
+    for (const std::string &a : argv)
+        av.push_back(const_cast<char *>(a.c_str()));
+    av.push_back(nullptr);
+    const size_t kMaxExtra = 8;
+    int targets[kMaxExtra], sources[kMaxExtra];
+    size_t nextra = std::min(extra.size(), kMaxExtra);
+    for (size_t i = 0; i < nextra; i++) {
+        targets[i] = extra[i].first;
+        sources[i] = extra[i].second;
+    }
+    const std::string cd_failed = "fc: cannot enter directory " + cwd + "\n";
+    const std::string exec_failed = "fc: cannot run " + argv[0] + " (missing or not executable)\n";
     int out[2];
     if (pipe2(out, O_CLOEXEC) != 0)
         return sys_fail(err, "pipe2");
@@ -248,11 +264,11 @@ bool start_child(const std::vector<std::string> &argv, const std::string &cwd, i
         sigprocmask(SIG_SETMASK, &none, nullptr);
         // Move the inherited descriptors out of the way first: a source may sit on a number
         // another one is mapped to.
-        std::vector<std::pair<int, int>> moved;
-        for (const auto &m : extra)
-            moved.push_back({m.first, fcntl(m.second, F_DUPFD_CLOEXEC, 100)});
-        for (const auto &m : moved)
-            if (m.second < 0 || dup2(m.second, m.first) < 0)
+        for (size_t i = 0; i < nextra; i++)
+            if ((sources[i] = fcntl(sources[i], F_DUPFD_CLOEXEC, 100)) < 0)
+                _exit(126);
+        for (size_t i = 0; i < nextra; i++)
+            if (dup2(sources[i], targets[i]) < 0)
                 _exit(126);
         dup2(out[1], 1);
         dup2(out[1], 2);
@@ -262,15 +278,13 @@ bool start_child(const std::vector<std::string> &argv, const std::string &cwd, i
         if (nice_inc > 0)
             setpriority(PRIO_PROCESS, 0, nice_inc);
         if (!cwd.empty() && chdir(cwd.c_str()) != 0) {
-            dprintf(2, "fc: cannot enter directory %s: %s\n", cwd.c_str(), strerror(errno));
+            ssize_t w = write(2, cd_failed.data(), cd_failed.size());
+            (void)w;
             _exit(126);
         }
-        std::vector<char *> av;
-        for (const std::string &a : argv)
-            av.push_back(const_cast<char *>(a.c_str()));
-        av.push_back(nullptr);
         execv(av[0], av.data());
-        dprintf(2, "fc: cannot run %s: %s\n", av[0], strerror(errno));
+        ssize_t w = write(2, exec_failed.data(), exec_failed.size());
+        (void)w;
         _exit(127);
     }
     close(out[1]);
