@@ -16,13 +16,19 @@ typedef int (*WriteTarga)(const char *, int, int, const unsigned char *, char *,
 typedef int (*ImageSize)(const char *, int *, int *, int *);
 
 struct Plugin {
-    std::once_flag once;
     std::thread loader;
     std::mutex mutex;
     bool started = false;
     WriteTarga write = nullptr;
     ImageSize size = nullptr;
     std::string error;
+
+    // A master that ends early (bad scene) must not leave the loader running.
+    ~Plugin()
+    {
+        if (loader.joinable())
+            loader.join();
+    }
 
     void load()
     {

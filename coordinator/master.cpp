@@ -223,36 +223,26 @@ bool Master::probe()
         fprintf(stderr, "fc-master: %s\n", err.c_str());
         return false;
     }
-    // The three questions to POV-Ray run at once: each start of povray-fc costs a few
-    // tenths of a second.
+    // Both questions to POV-Ray at once: each start of povray-fc costs a tenth of a second.
     double limit = std::max(30.0, opt_.timeout);
-    std::string scene_err, shell_err, version_err;
-    bool scene_ok = false, shell_ok = false, version_ok = true, has_fc = false;
+    std::string scene_err, shell_err;
+    bool shell_ok = false;
     std::thread shell([&] {
         shell_ok = probe_shellouts(renderer_, opt_.pov, cwd_, tmpdir_, limit, shellouts_, shell_err);
     });
-    std::thread version([&] {
-        std::string first;
-        if (opt_.fc)
-            version_ok = renderer_version(renderer_, has_fc, first, version_err);
-    });
-    scene_ok = probe_scene(renderer_, opt_.pov, cwd_, tmpdir_, limit, scene_, scene_err);
+    bool scene_ok = probe_scene(renderer_, opt_.pov, cwd_, tmpdir_, limit, scene_, scene_err);
     shell.join();
-    version.join();
-    err = !scene_ok ? scene_err : !shell_ok ? shell_err : version_err;
-    if (!scene_ok || !shell_ok || !version_ok) {
+    err = !scene_ok ? scene_err : shell_err;
+    if (!scene_ok || !shell_ok) {
         fprintf(stderr, "fc-master: %s", err.c_str());
         if (err.empty() || err.back() != '\n')
             fputc('\n', stderr);
         return false;
     }
-    if (opt_.fc) {
-        if (has_fc)
-            extra_.push_back(kFrameCoherenceOption);
-        else
-            fprintf(stderr, "fc-master: warning: %s does not support frame coherence; "
-                            "rendering without it\n", renderer_.c_str());
-    }
+    // A renderer with the frame channel (the shell-out probe needs it) has frame coherence:
+    // the channel's patches come after fc's.
+    if (opt_.fc)
+        extra_.push_back(kFrameCoherenceOption);
     shellouts_.permitted = scene_.shellouts_permitted;
     shellouts_.width = scene_.width;
     shellouts_.height = scene_.height;

@@ -14,7 +14,6 @@
 namespace fc {
 
 const char *const kFrameCoherenceOption = "Frame_Coherence=on";
-const char *const kFrameCoherenceFeature = "Frame coherence";
 
 namespace {
 
@@ -190,37 +189,6 @@ bool probe_scene(const std::string &renderer, const std::vector<std::string> &op
     if (info.frames.empty()) {
         err = "no frames to render";
         return false;
-    }
-    return true;
-}
-
-bool renderer_version(const std::string &renderer, bool &has_fc, std::string &first_line,
-                      std::string &err)
-{
-    std::vector<std::string> lines;
-    int status = 0;
-    if (!run_collect({renderer, "--version"}, "", 30, lines, status, err))
-        return false;
-    if (!WIFEXITED(status) || WEXITSTATUS(status) == 126 || WEXITSTATUS(status) == 127) {
-        err = strf("%s --version failed (%s)", renderer.c_str(), describe_status(status).c_str());
-        for (const std::string &l : lines)
-            if (!is_noise(l))
-                err += "\n" + l;
-        return false;
-    }
-    has_fc = false;
-    first_line.clear();
-    std::string want = kFrameCoherenceFeature;
-    std::transform(want.begin(), want.end(), want.begin(), ::tolower);
-    for (const std::string &l : lines) {
-        if (is_noise(l))
-            continue;
-        if (first_line.empty())
-            first_line = l;
-        std::string low = l;
-        std::transform(low.begin(), low.end(), low.begin(), ::tolower);
-        if (low.find(want) != std::string::npos)
-            has_fc = true;
     }
     return true;
 }

@@ -16,10 +16,8 @@
 
 namespace fc {
 
-// Frame coherence: the INI option the master appends unless --no-fc, and the text POV-Ray's
-// --version output contains when the renderer supports it.
+// Frame coherence: the INI option the master appends unless --no-fc.
 extern const char *const kFrameCoherenceOption;    // "Frame_Coherence=on"
-extern const char *const kFrameCoherenceFeature;   // "Frame coherence"
 
 struct SceneInfo {
     int width = 0, height = 0;
@@ -46,10 +44,6 @@ bool probe_scene(const std::string &renderer, const std::vector<std::string> &op
 // Run argv to completion (or timeout) in cwd, collecting its output lines and wait status.
 bool run_collect(const std::vector<std::string> &argv, const std::string &cwd, double timeout,
                  std::vector<std::string> &lines, int &status, std::string &err);
-
-// Run `renderer --version`; true if it ran. has_fc tells whether it supports frame coherence.
-bool renderer_version(const std::string &renderer, bool &has_fc, std::string &first_line,
-                      std::string &err);
 
 // Output file name of frame (POV-Ray's scheme: stem + frame zero-padded to digits + ".tga";
 // a still image has no number).
