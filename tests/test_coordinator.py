@@ -13,8 +13,8 @@ import time
 import numpy as np
 import pytest
 
-from conftest import (TOP, coordinator_cmdline, coordinator_renderer, coordinator_stats,
-                      load_rgb)
+from conftest import (COORDINATOR_SCENES, TOP, coordinator_cmdline, coordinator_renderer,
+                      coordinator_stats, load_rgb)
 
 pytestmark = pytest.mark.usefixtures("coordinator_build")
 
@@ -321,6 +321,67 @@ def test_failing_host_is_left_out(coordinator, tmp_path):
     assert r.returncode == 1
     assert "left out" in r.stderr and "simulated host failure" in r.stderr, r.stderr
     assert os.listdir(out) == []
+    assert coordinator.wait_no_processes() == []
+
+
+SHELLOUT_INI = """\
+Pre_Scene_Command=sh -c "echo pre-scene %n >> {log}"
+Pre_Frame_Command=sh -c "echo pre-frame %n %k >> {log}"
+Post_Frame_Command=sh -c "echo post-frame %n >> {log}"
+Post_Scene_Command=sh -c "echo post-scene %n >> {log}"
+"""
+
+
+def allow_shellouts(tmp_path):
+    """A command prefix that runs its command in a private mount namespace where povray.conf
+    allows shell-outs (Debian's forbids them; the machine's own file stays untouched)."""
+    conf = tmp_path / "povray.conf"
+    text = open("/etc/povray/3.7/povray.conf").read()
+    conf.write_text(text.replace("\nforbidden", "\nallowed"))
+    return ["unshare", "-m", "--", "sh", "-c",
+            'mount --bind "$0" /etc/povray/3.7/povray.conf && exec "$@"', str(conf)]
+
+
+@pytest.mark.skipif(os.geteuid() != 0, reason="needs root for a private mount namespace")
+def test_shellouts_run_once_as_in_one_process(coordinator, tmp_path):
+    prefix = allow_shellouts(tmp_path)
+    opts = ["+W64", "+H48", "+KFI1", "+KFF4"]
+    single_log, master_log = tmp_path / "single.log", tmp_path / "master.log"
+    (tmp_path / "single.ini").write_text(SHELLOUT_INI.format(log=single_log))
+    (tmp_path / "master.ini").write_text(SHELLOUT_INI.format(log=master_log))
+    single = subprocess.run(prefix + [coordinator_renderer(), SCENE, str(tmp_path / "single.ini"),
+                                      "-D", "-V", "+O%s/s" % tmp_path] + opts,
+                            cwd=COORDINATOR_SCENES, capture_output=True, text=True, timeout=60)
+    assert single.returncode == 0, single.stderr
+    out = tmp_path / "out"
+    r = coordinator.run(["--quiet", "--division", "frame", "--tile", "16", "--slaves", "3",
+                         SCENE, str(tmp_path / "master.ini")] + opts + ["-o", str(out)],
+                        prefix=prefix)
+    assert r.returncode == 0, r.stderr
+    want = single_log.read_text().splitlines()
+    got = master_log.read_text().splitlines()
+    # Invariant: each command runs as often as in one process (scene once, frame once per
+    # frame, never per tile or slave), with the same frame number and clock.
+    assert sorted(got) == sorted(want), (got, want)
+    assert got[0] == "pre-scene 1" and got[-1] == "post-scene 4"
+    for n in range(1, 5):
+        assert got.index("post-frame %d" % n) > got.index("pre-frame %d %s" % (
+            n, next(w.split()[2] for w in want if w.startswith("pre-frame %d " % n))))
+    assert len(os.listdir(out)) == 4
+    assert coordinator.wait_no_processes() == []
+
+
+def test_forbidden_shellout_keeps_its_return_action(coordinator, tmp_path):
+    # Debian's povray.conf forbids shell-outs; POV-Ray then counts the command as failed,
+    # and Pre_Scene_Return=q makes it quit before rendering (exit status 0).
+    ini = tmp_path / "quit.ini"
+    ini.write_text("Pre_Scene_Command=touch %s\nPre_Scene_Return=q\n" % (tmp_path / "ran"))
+    out = tmp_path / "out"
+    r = coordinator.run(["--no-fc", SCENE, str(ini)] + SMALL + ["-o", str(out)])
+    assert r.returncode == 0, r.stderr
+    assert "quit rendering" in r.stderr and "prohibited" in r.stderr
+    assert not (tmp_path / "ran").exists()
+    assert not out.exists() or os.listdir(out) == []
     assert coordinator.wait_no_processes() == []
 
 
