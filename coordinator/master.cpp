@@ -355,7 +355,7 @@ void Master::send_job(SlaveInfo &s, const Job &job)
                 all[size_t(t)] = t;
             std::vector<int> fresh;
             std::vector<Job> cancel;
-            sched_->job_done(job.id, job.index, all, fresh, cancel);
+            sched_->job_done(job.id, job.index, all, fresh, cancel, now());
             cancel_jobs(cancel);
             skipped_++;
             return;
@@ -519,7 +519,7 @@ void Master::on_frame(int src)
     job_slave_.erase(fr.job);
     std::vector<int> fresh;
     std::vector<Job> cancel;
-    sched_->job_done(fr.job, idx, fr.tiles, fresh, cancel);
+    sched_->job_done(fr.job, idx, fr.tiles, fresh, cancel, now());
     std::string host = s ? s->host : "?";
     double seconds = fr.parse_seconds + fr.trace_seconds;
     HostStat &hs = host_stat(host);
@@ -590,7 +590,7 @@ void Master::on_fail(int src)
         return;
     }
     // Not the scene's fault: try the job elsewhere, leave out a host that keeps failing.
-    int failures = sched_->job_failed(f.job);
+    int failures = sched_->job_failed(f.job, now());
     host_stat(host).failures++;
     if (failures >= Schedule::kRetries) {
         fatal(strf("frame %d failed %d times, last on host %s (%s):\n%s", f.frame, failures,

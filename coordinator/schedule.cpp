@@ -119,6 +119,9 @@ int Schedule::add_job(int slave, int index, const std::vector<int> &tiles, int r
     j.slave = slave;
     j.range = range;
     j.started = t;
+    // A slave renders its jobs in the order it got them: the first is being rendered now.
+    if (live_jobs(slave) == 0)
+        j.rendering = t;
     jobs_[j.id] = j;
     return j.id;
 }
@@ -259,17 +262,16 @@ void Schedule::divide(int ri, int index)
             first_division = false;
     }
     if (first_division) {
-        // Contiguous runs of tiles in raster order, sized by speed: a tile goes to the member
-        // whose part of the cumulative area holds the tile's middle.
-        double before = 0, bound = target[m[0]];
-        size_t k = 0;
+        // Tiles dealt in raster order to the member furthest below its share (by speed):
+        // every slave gets tiles all over the frame, so a region that is expensive to render
+        // (frame coherence re-traces only what moved) is shared instead of holding one back.
         for (int t : todo) {
-            double a = tiles_[size_t(t)].area();
-            while (k + 1 < m.size() && before + a / 2 > bound)
-                bound += target[m[++k]];
-            share[m[k]].push_back(t);
-            load[m[k]] += a;
-            before += a;
+            int best = m[0];
+            for (int s : m)
+                if (load[s] / target[s] < load[best] / target[best])
+                    best = s;
+            share[best].push_back(t);
+            load[best] += tiles_[size_t(t)].area();
         }
     } else {
         std::vector<int> unowned;
@@ -445,23 +447,15 @@ const Job *Schedule::duplicate(int slave, double t)
 {
     // Only a job a slave is rendering (its oldest) counts, and only once it has taken clearly
     // longer than jobs usually take: a copy costs its new slave a restart.
-    std::map<int, Job *> rendering;
+    Job *oldest = nullptr;
     for (auto &kv : jobs_) {
         Job &j = kv.second;
-        if (!j.live || j.slave == slave)
+        if (!j.live || j.slave == slave || j.rendering < 0 || j.dup_of >= 0 || j.has_dup ||
+            missing(j.index, j.tiles).empty())
             continue;
-        Job *&r = rendering[j.slave];
-        if (!r || j.started < r->started)
-            r = &j;
-    }
-    Job *oldest = nullptr;
-    for (auto &kv : rendering) {
-        Job &j = *kv.second;
-        if (j.dup_of >= 0 || j.has_dup || missing(j.index, j.tiles).empty())
+        if (t - j.rendering < std::max(kStragglerSeconds, 2 * job_seconds_))
             continue;
-        if (t - j.started < std::max(kStragglerSeconds, 2 * job_seconds_))
-            continue;
-        if (!oldest || j.started < oldest->started)
+        if (!oldest || j.rendering < oldest->rendering)
             oldest = &j;
     }
     if (!oldest)
@@ -502,8 +496,19 @@ const Job *Schedule::next_job(int slave, double t, bool allow_duplicates)
     return duplicate(slave, t);
 }
 
+// The slave's oldest live job is the one it renders now.
+void Schedule::next_rendering(int slave, double t)
+{
+    Job *first = nullptr;
+    for (auto &kv : jobs_)
+        if (kv.second.live && kv.second.slave == slave && (!first || kv.first < first->id))
+            first = &kv.second;
+    if (first && first->rendering < 0)
+        first->rendering = t;
+}
+
 void Schedule::job_done(int id, int index, const std::vector<int> &tiles, std::vector<int> &fresh,
-                        std::vector<Job> &cancel)
+                        std::vector<Job> &cancel, double t)
 {
     fresh.clear();
     if (index < 0 || index >= nframes_)
@@ -514,8 +519,10 @@ void Schedule::job_done(int id, int index, const std::vector<int> &tiles, std::v
             fresh.push_back(t);
         }
     auto it = jobs_.find(id);
+    int slave = 0;
     if (it != jobs_.end()) {
         it->second.live = false;
+        slave = it->second.slave;
         if (it->second.dup_of >= 0 && jobs_.count(it->second.dup_of))
             jobs_[it->second.dup_of].has_dup = false;
     }
@@ -529,6 +536,10 @@ void Schedule::job_done(int id, int index, const std::vector<int> &tiles, std::v
             cancel.push_back(o);
         }
     }
+    if (slave != 0)
+        next_rendering(slave, t);
+    for (const Job &c : cancel)
+        next_rendering(c.slave, t);
     prune();
 }
 
@@ -539,7 +550,7 @@ void Schedule::prune()
         k = k->second.live ? std::next(k) : jobs_.erase(k);
 }
 
-int Schedule::job_failed(int id)
+int Schedule::job_failed(int id, double t)
 {
     auto it = jobs_.find(id);
     if (it == jobs_.end() || !it->second.live)
@@ -550,6 +561,7 @@ int Schedule::job_failed(int id)
         jobs_[j.dup_of].has_dup = false;
     auto s = slaves_.find(j.slave);
     orphan(j.index, j.tiles, j.failures + 1, s == slaves_.end() ? 0 : s->second.host);
+    next_rendering(j.slave, t);
     return missing(j.index, j.tiles).empty() ? 0 : j.failures + 1;
 }
 

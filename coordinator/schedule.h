@@ -11,7 +11,10 @@
 // division gives each slave its own range of whole frames, frame division puts every slave in
 // one range and divides each frame's tiles among them, hybrid has a few ranges with a few
 // slaves each. In a range with several slaves, each frame's tiles are divided when the first
-// of them asks for that frame: every slave keeps the tiles it had (its renderer's coherence).
+// of them asks for that frame: the first time dealt out in raster order by speed (so every
+// slave has tiles all over the frame and shares its expensive regions, such as the few that
+// frame coherence re-traces), later every slave keeps the tiles it had (its renderer's
+// coherence).
 // Slaves of a range work on neighbouring frames, so frames complete in order and the master
 // holds a few frames, not all of them: a range never divides a frame more than kWindow frames
 // past its oldest unfinished one. A slave that reaches that limit waits, and the next
@@ -59,7 +62,8 @@ struct Job {
     bool has_dup = false;
     bool live = true;           // handed out, no result yet
     int failures = 0;           // failed attempts of these cells before this one
-    double started = 0;
+    double started = 0;         // handed out
+    double rendering = -1;      // its slave began it (its previous job was done); -1: queued
 };
 
 class Schedule {
@@ -98,11 +102,11 @@ public:
     // that were new (store their pixels); jobs that have nothing left to add are appended to
     // cancel (they are no longer live).
     void job_done(int id, int index, const std::vector<int> &tiles, std::vector<int> &fresh,
-                  std::vector<Job> &cancel);
+                  std::vector<Job> &cancel, double t);
 
     // A job failed on its slave (not a scene error): its missing cells become orphans that
     // avoid that host. Returns the largest failure count of those cells.
-    int job_failed(int id);
+    int job_failed(int id, double t);
 
     // Measured speed of a slave: pixels of a job per second.
     void note_speed(int slave, double pixels, double seconds);
@@ -139,6 +143,7 @@ private:
 
     void mark_done(int index, int tile);
     void prune();
+    void next_rendering(int slave, double t);
     int add_job(int slave, int index, const std::vector<int> &tiles, int range, double t);
     const Job *take_orphan(int slave, double t);
     const Job *take_from_range(int slave, double t);

@@ -24,12 +24,13 @@ static int failures = 0;
 static const Rect kArea{0, 0, 160, 120};
 
 // Deliver job j: every tile of it arrives.
-static std::vector<int> deliver(Schedule &s, const Job &j, std::vector<Job> *cancelled = nullptr)
+static std::vector<int> deliver(Schedule &s, const Job &j, std::vector<Job> *cancelled = nullptr,
+                                double t = 0)
 {
     std::vector<int> fresh;
     std::vector<Job> cancel;
     Job copy = j;
-    s.job_done(copy.id, copy.index, copy.tiles, fresh, cancel);
+    s.job_done(copy.id, copy.index, copy.tiles, fresh, cancel, t);
     if (cancelled)
         *cancelled = cancel;
     return fresh;
@@ -176,16 +177,16 @@ static void test_failure_retries_elsewhere()
     s.plan(1);
     const Job *a = s.next_job(1, 0, true);
     int index = a->index;
-    CHECK(s.job_failed(a->id) == 1);
+    CHECK(s.job_failed(a->id, 0) == 1);
     // Another slave on the same host does not get it while another host can.
     const Job *b = s.next_job(2, 0, true);
     CHECK(!b || b->index != index);
     const Job *c = s.next_job(3, 0, true);
     CHECK(c && c->index == index && c->failures == 1);
-    CHECK(s.job_failed(c->id) == 2);
+    CHECK(s.job_failed(c->id, 0) == 2);
     const Job *d = s.next_job(1, 0, true);
     CHECK(d && d->index == index);
-    CHECK(s.job_failed(d->id) == Schedule::kRetries);
+    CHECK(s.job_failed(d->id, 0) == Schedule::kRetries);
 }
 
 static void test_straggler_duplicate()
@@ -206,6 +207,27 @@ static void test_straggler_duplicate()
     CHECK(deliver(s, *b, &cancel) == std::vector<int>{0});
     CHECK(cancel.size() == 1 && cancel[0].id == aid);
     CHECK(s.finished());
+}
+
+static void test_queued_job_is_not_a_straggler()
+{
+    Schedule s({kArea}, 2, Division::Sequence);
+    s.add_slave(1, 100);
+    s.plan(1);
+    const Job *a = s.next_job(1, 0, true);
+    Job first = *a;
+    const Job *b = s.next_job(1, 0, true);
+    int bid = b->id;
+    s.add_slave(2, 100);
+    // The straggler clock of a job starts when its slave begins it, not when it was sent.
+    const Job *d = s.next_job(2, 5, true);
+    CHECK(d && d->dup_of == first.id);
+    deliver(s, first, nullptr, 5);  // slave 1 now renders b; the copy of a is cancelled
+    s.remove_slave(2);
+    s.add_slave(3, 100);
+    CHECK(s.next_job(3, 5.5, true) == nullptr);
+    const Job *e = s.next_job(3, 30, true);
+    CHECK(e && e->dup_of == bid);
 }
 
 static void test_repair()
@@ -269,7 +291,7 @@ static void test_simulation(Division div, unsigned seed)
             continue;
         }
         if (roll == 1 && j.failures < Schedule::kRetries - 1) {
-            s.job_failed(j.id);
+            s.job_failed(j.id, 0);
             continue;
         }
         s.note_speed(slave, double(j.tiles.size()) * 1600, 1.0 / speed[slave]);
@@ -303,6 +325,7 @@ int main()
     test_dead_slave_orphans();
     test_failure_retries_elsewhere();
     test_straggler_duplicate();
+    test_queued_job_is_not_a_straggler();
     test_repair();
     for (unsigned seed = 1; seed <= 50; seed++) {
         test_simulation(Division::Sequence, seed);
