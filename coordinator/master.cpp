@@ -537,7 +537,10 @@ void Master::on_frame(int src)
     double pixels = 0;
     for (const Rect &r : fr.rects)
         pixels += double(r.area());
-    sched_->note_speed(src, pixels, seconds);
+    // A fresh renderer with frame coherence traced and recorded everything: no measure of
+    // the slave's speed on coherent frames.
+    if (!(fr.fresh && !extra_.empty()))
+        sched_->note_speed(src, pixels, seconds);
     if (!fresh.empty()) {
         std::vector<char> keep(fr.tiles.size(), 0);
         for (size_t k = 0; k < fr.tiles.size(); k++)

@@ -15,7 +15,8 @@
 //  FC_JOB         m->slave    Job: job, frame, tiles, their rectangles,        FC_FRAME or FC_FAIL
 //                             threads
 //  FC_FRAME       slave->m    FrameResult: job, frame, tiles, rectangles,      FC_JOB (next work),
-//                             rays, parse and trace seconds, encoding, pixels  or none
+//                             rays, parse and trace seconds, fresh renderer,   or none
+//                             encoding, pixels
 //  FC_PROGRESS    slave->m    Progress: job, frame (heartbeat, every <= 2 s    none
 //                             while rendering)
 //  FC_FAIL        slave->m    Failure: job, frame, scene error or not, wait    scene error: FC_QUIT to
@@ -104,6 +105,7 @@ struct FrameResult {
     std::vector<Rect> rects;
     double rays = 0;                    // from POV-Ray's statistics (-1: none)
     double parse_seconds = 0, trace_seconds = 0;
+    int fresh = 0;                      // the renderer's first frame (fc traced everything)
     std::string encoding;               // "rgb8": 3 bytes a pixel; "rgbf": see dither.h
     std::vector<uint8_t> data;          // the rectangles in order, rows top first
 };

@@ -117,6 +117,7 @@ bool Renderer::submit(int frame, const std::vector<Rect> &rects, std::string &er
     frame_ = frame;
     next_ = frame + 1;
     rects_ = rects;
+    first_frame_ = !rendered_any_;
     rendered_any_ = true;
     return true;
 }

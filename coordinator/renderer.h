@@ -52,6 +52,8 @@ public:
 
     State state() const { return state_; }
     int frame() const { return frame_; }
+    // The frame being rendered is this process's first.
+    bool first_frame() const { return first_frame_; }
 
     // Whether this process can render frame `frame` over rects without starting over.
     bool can_take(int frame, const std::vector<Rect> &rects) const;
@@ -87,6 +89,7 @@ private:
     int next_ = 0;                      // frames below this have passed
     std::vector<Rect> rects_;           // rectangles of the last frame asked for
     bool rendered_any_ = false;
+    bool first_frame_ = false;
     std::deque<std::string> tail_;      // last console lines
 };
 

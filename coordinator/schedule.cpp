@@ -293,7 +293,9 @@ void Schedule::divide(int ri, int index)
             load[best] += tiles_[size_t(t)].area();
         }
         // Move tiles from the most to the least loaded member while it pays.
-        for (int moves = 0; r.lagging && moves < tiles(); moves++) {
+        bool moved = false;
+        bool may_move = r.lagging && index - r.last_move >= kMoveGap;
+        for (int moves = 0; may_move && moves < tiles(); moves++) {
             int over = m[0], under = m[0];
             for (int s : m) {
                 if (load[s] / target[s] > load[over] / target[over]) over = s;
@@ -323,7 +325,10 @@ void Schedule::divide(int ri, int index)
             share[under].push_back(pick);
             load[over] -= a;
             load[under] += a;
+            moved = true;
         }
+        if (moved)
+            r.last_move = index;
     }
     r.lagging = false;
     for (auto &kv : share) {

@@ -19,8 +19,10 @@
 // holds a few frames, not all of them: a range never divides a frame more than kWindow frames
 // past its oldest unfinished one. A slave that reaches that limit waits, and the next
 // division moves tiles from the slowest to the fastest slaves (by measured speed) until no
-// share exceeds its speed's by more than 20%: tiles move only when the slaves really drift
-// apart, since a moved tile costs a full re-trace on its new slave.
+// share exceeds its speed's by more than 20%, at most once every kMoveGap frames: tiles move
+// only when the slaves really drift apart, since a moved tile costs a full re-trace on its
+// new slave (with frame coherence its renderer starts afresh, and such a first frame does not
+// count in the slave's speed).
 //
 // Load balancing: a slave whose range is finished joins the range with the most work left per
 // slave (frame division) or splits it in the middle, taking the later half (sequence and
@@ -71,6 +73,7 @@ public:
     static const int kWindow = 4;   // frames a range may divide beyond its oldest unfinished one
     static const int kRetries = 3;  // failed attempts of a cell before the render fails
     static constexpr double kStragglerSeconds = 1.0;   // a job runs this long before a copy
+    static const int kMoveGap = 2 * kWindow;    // frames between two rebalancing moves
 
     Schedule(const std::vector<Rect> &tiles, int nframes, Division division);
 
@@ -128,6 +131,7 @@ private:
         std::map<int, std::map<int, std::vector<int>>> reserved;   // index -> slave -> tiles
         std::map<int, int> owner;       // tile -> slave that had it last
         bool lagging = false;           // a member waited for the others: rebalance
+        int last_move = -1000;          // index of the last division that moved tiles
     };
     struct SlaveState {
         int host = 0;

@@ -211,6 +211,7 @@ bool Slave::send_frame(const FrameRecord &rec)
     fr.rays = rec.rays;
     fr.parse_seconds = rec.parse_seconds;
     fr.trace_seconds = rec.trace_seconds;
+    fr.fresh = renderer_.first_frame() ? 1 : 0;
     fr.encoding = rec.encoding;
     fr.data = rec.data;
     int r = send_msg(master_, FC_FRAME, fr);
