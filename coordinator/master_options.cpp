@@ -26,8 +26,9 @@ const char *const kHelp =
     "Options:\n"
     "  -o, --output DIR        output directory (default: where POV-Ray would write)\n"
     "  --division MODE         sequence | frame | hybrid (default frame)\n"
-    "  --tile N                tile size in pixels for frame/hybrid division (default 80)\n"
-    "  --ranges N              initial frame ranges for sequence/hybrid (default: slaves)\n"
+    "  --tile N                tile size in pixels for frame/hybrid division (default 64)\n"
+    "  --ranges N              initial frame ranges: sequence (default: one per slave),\n"
+    "                          hybrid (default: one per two slaves)\n"
     "  --slaves N              slaves per host (default: one per core)\n"
     "  --hostfile FILE         pvmd host file for a private virtual machine\n"
     "  --pvmd-name NAME        host name of a private pvmd (-nNAME; needed to add hosts\n"
@@ -37,13 +38,13 @@ const char *const kHelp =
     "  --no-duplicates         idle slaves never duplicate running work (stragglers)\n"
     "  --no-local-slaves       no slaves on the master's own host (it only assembles, as\n"
     "                          in the paper; e.g. to emulate a cluster of namespace hosts)\n"
-    "  --povray PATH           renderer (default: povray-fc next to fc-master, then PATH)\n"
+    "  --povray PATH           renderer, povray-fc (default: next to fc-master, then PATH)\n"
     "  --slave PATH            fc-slave binary (default: next to fc-master)\n"
     "  --timeout SECONDS       a slave silent this long is presumed dead (default 120)\n"
     "  --nice N                run the renderer with this nice increment (default 0)\n"
     "  --progress SECONDS      interval of progress lines when stderr is no terminal (10)\n"
     "  --quiet                 no progress output\n"
-    "  --stats FILE            write per-frame and per-unit statistics as JSON\n"
+    "  --stats FILE            write per-frame and per-job statistics as JSON\n"
     "  --help                  show this help\n";
 
 [[noreturn]] void usage_error(const std::string &msg)

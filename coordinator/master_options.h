@@ -11,7 +11,7 @@ namespace fc {
 struct Options {
     std::string output;
     Division division = Division::Frame;
-    int tile = 80;
+    int tile = 64;              // a multiple of POV-Ray's 32-pixel render blocks
     int ranges = 0;             // 0 = the division's default
     int slaves = 0;             // 0 = one per core
     std::string hostfile;

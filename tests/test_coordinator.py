@@ -104,7 +104,7 @@ def test_division_matches_single_process(coordinator, coordinator_references, tm
     assert s["virtual_machine"] == "private"
     assert s["frames_total"] == 8 and s["frames_rendered"] == 8
     assert [h["slaves"] for h in s["hosts"]] == [slaves]
-    ntiles = 1 if division == "sequence" else 4     # 160x120 in 80x80 tiles
+    ntiles = 1 if division == "sequence" else 6     # 160x120 in tiles of 64 (the default)
     for f in s["frames"]:
         # Invariant: each frame is assembled from each tile exactly once, with its statistics.
         assert sorted(t["tile"] for t in f["tiles"]) == list(range(ntiles))
