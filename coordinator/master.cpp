@@ -1,4 +1,6 @@
 // master.cpp - fc-master: renders a POV-Ray animation on the hosts of a PVM virtual machine.
+// This file is its receive loop and the handlers of the messages; master_setup.cpp does what
+// comes before and after.
 //
 // Flow: parse our options (POV-Ray's pass through untouched, master_options.h), ask POV-Ray
 // for the resolved image size, frames and output name (probe_scene), skip frames already
@@ -9,12 +11,9 @@
 // frames, which are written as soon as they are complete (assembly.h). Timeouts, pings and
 // progress run on a clock, whatever the traffic.
 #include <signal.h>
-#include <sys/resource.h>
-#include <sys/stat.h>
 #include <unistd.h>
 
 #include <cerrno>
-#include <climits>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -23,66 +22,25 @@
 #include <map>
 #include <memory>
 #include <set>
-#include <thread>
 
 #include <pvm3.h>
 
-#include "assembly.h"
-#include "cluster.h"
 #include "image_io.h"
-#include "master_options.h"
-#include "povray.h"
+#include "master.h"
 #include "protocol.h"
 #include "pvmutil.h"
-#include "report.h"
-#include "schedule.h"
-#include "shellout.h"
 #include "util.h"
 
-using namespace fc;
-
-namespace {
+namespace fc {
 
 volatile sig_atomic_t g_signal = 0;
+
+namespace {
 
 void on_signal(int sig) { g_signal = sig; }
 
 const double kTick = 0.25;          // seconds between timer checks (timeouts, pings, progress)
 const int kJobsAhead = 2;           // jobs a slave holds: the one rendering and the next
-
-std::string absolute(const std::string &path)
-{
-    char buf[PATH_MAX];
-    if (realpath(path.c_str(), buf))
-        return buf;
-    if (!path.empty() && path[0] == '/')
-        return path;
-    char cwd[PATH_MAX];
-    if (!getcwd(cwd, sizeof cwd))
-        return path;
-    return std::string(cwd) + "/" + path;
-}
-
-bool make_dirs(const std::string &dir, std::string &err)
-{
-    std::string acc;
-    size_t pos = 0;
-    while (pos <= dir.size()) {
-        size_t slash = dir.find('/', pos);
-        if (slash == std::string::npos)
-            slash = dir.size();
-        acc = dir.substr(0, slash);
-        if (!acc.empty() && mkdir(acc.c_str(), 0777) != 0 && errno != EEXIST)
-            return sys_fail(err, "mkdir " + acc);
-        pos = slash + 1;
-    }
-    struct stat st;
-    if (stat(dir.c_str(), &st) != 0 || !S_ISDIR(st.st_mode)) {
-        err = dir + " is not a directory";
-        return false;
-    }
-    return true;
-}
 
 // The first line of a multi-line message (for warnings that go on).
 std::string first_line(const std::string &s)
@@ -91,221 +49,7 @@ std::string first_line(const std::string &s)
     return nl == std::string::npos ? s : s.substr(0, nl);
 }
 
-class Master {
-public:
-    Master(const Options &o) : opt_(o), report_(o.progress, o.quiet) {}
-    int run();
-
-private:
-    // Set-up steps, in order.
-    bool resolve_programs();
-    bool probe();
-    bool prepare_output();
-    bool start_cluster();
-
-    // The receive loop and its handlers, one per tag.
-    int loop();
-    void on_hello(int src);
-    void on_frame(int src);
-    void on_progress(int src);
-    void on_fail(int src);
-    void on_task_exit();
-    void on_host_delete();
-    void on_host_add();
-
-    // Helpers.
-    void plan_if_ready();
-    void dispatch();
-    void send_job(SlaveInfo &s, const Job &job);
-    void cancel_jobs(const std::vector<Job> &jobs);
-    bool frame_finished(int index);
-    void slave_gone(SlaveInfo &s, const std::string &why, bool respawn);
-    void leave_out_host(int dtid, const std::string &last_error);
-    void check_timeouts();
-    void progress();
-    void fatal(const std::string &msg);
-    void shutdown_slaves();
-    void finish(bool ok);
-    int index_of(int frame) const;
-    HostStat &host_stat(const std::string &name);
-
-    Options opt_;
-    Report report_;
-    std::string renderer_, cwd_, outdir_, tmpdir_;
-    std::vector<std::string> extra_;
-    SceneInfo scene_;
-    Shellouts shellouts_;
-    std::vector<Rect> tiles_;
-    std::unique_ptr<Schedule> sched_;
-    std::unique_ptr<FrameAssembly> assembly_;
-    Cluster cluster_;
-    bool planned_ = false;
-    double start_ = 0, spawn_time_ = 0, next_tick_ = 0;
-    bool failed_ = false;
-    bool quit_early_ = false;           // a shell-out asked to stop (exit status 0)
-    bool skip_post_scene_ = false;      // ... and to skip the rest, Post_Scene included
-    int skipped_ = 0;                   // frames a Pre_Frame_Command skipped
-    int max_frames_held_ = 0;           // most frames in the master's memory at once
-    long messages_ = 0;                 // messages received
-    int exit_code_ = 0;
-    std::string vm_kind_ = "none";      // "private" or "running" once started
-    int resumed_ = 0, rendered_ = 0;
-    long cells_total_ = 0;
-    std::vector<char> frame_started_;   // Pre_Frame_Command ran
-    std::vector<FrameStat> frame_stats_;
-    std::map<int, JobStat> job_stats_;  // only with --stats
-    std::map<std::string, HostStat> host_stats_;
-    std::map<std::string, std::set<int>> host_frames_;
-    std::map<int, int> frame_index_;
-    std::map<int, int> job_slave_;      // live job -> slave tid, to cancel it
-};
-
-HostStat &Master::host_stat(const std::string &name)
-{
-    HostStat &h = host_stats_[name];
-    h.name = name;
-    return h;
-}
-
-int Master::index_of(int frame) const
-{
-    auto it = frame_index_.find(frame);
-    return it == frame_index_.end() ? -1 : it->second;
-}
-
-bool Master::resolve_programs()
-{
-    std::string here = self_dir();
-    if (!opt_.povray.empty()) {
-        renderer_ = which(opt_.povray);
-        if (renderer_.empty()) {
-            fprintf(stderr, "fc-master: renderer %s not found or not executable\n",
-                    opt_.povray.c_str());
-            return false;
-        }
-    } else if (const char *env = getenv("FC_POVRAY"); env && *env) {
-        renderer_ = which(env);
-    } else if (is_executable(here + "/povray-fc")) {
-        renderer_ = here + "/povray-fc";
-    } else {
-        renderer_ = which("povray-fc");
-    }
-    if (renderer_.empty()) {
-        fprintf(stderr, "fc-master: no renderer found (povray-fc); use --povray PATH\n");
-        return false;
-    }
-    renderer_ = absolute(renderer_);
-
-    std::string slave = opt_.slave.empty() ? here + "/fc-slave" : opt_.slave;
-    if (slave.find('/') == std::string::npos)
-        slave = which(slave).empty() ? slave : which(slave);
-    cluster_.slave_prog = absolute(slave);
-    if (!is_executable(cluster_.slave_prog)) {
-        fprintf(stderr, "fc-master: slave program %s is missing or not executable "
-                        "(build it with 'make -C coordinator', or use --slave PATH)\n",
-                cluster_.slave_prog.c_str());
-        return false;
-    }
-    char buf[PATH_MAX];
-    if (!getcwd(buf, sizeof buf)) {
-        perror("fc-master: getcwd");
-        return false;
-    }
-    cwd_ = buf;
-    return true;
-}
-
-bool Master::probe()
-{
-    std::string err;
-    remove_stale_dirs("/tmp", "fc-master-");
-    if (!make_temp_dir("/tmp", strf("fc-master-%d-", int(getpid())), tmpdir_, err)) {
-        fprintf(stderr, "fc-master: %s\n", err.c_str());
-        return false;
-    }
-    // Both questions to POV-Ray at once: each start of povray-fc costs a tenth of a second.
-    double limit = std::max(30.0, opt_.timeout);
-    std::string scene_err, shell_err;
-    bool shell_ok = false;
-    std::thread shell([&] {
-        shell_ok = probe_shellouts(renderer_, opt_.pov, cwd_, tmpdir_, limit, shellouts_, shell_err);
-    });
-    bool scene_ok = probe_scene(renderer_, opt_.pov, cwd_, tmpdir_, limit, scene_, scene_err);
-    shell.join();
-    err = !scene_ok ? scene_err : shell_err;
-    if (!scene_ok || !shell_ok) {
-        fprintf(stderr, "fc-master: %s", err.c_str());
-        if (err.empty() || err.back() != '\n')
-            fputc('\n', stderr);
-        return false;
-    }
-    // A renderer with the frame channel (the shell-out probe needs it) has frame coherence:
-    // the channel's patches come after fc's.
-    if (opt_.fc)
-        extra_.push_back(kFrameCoherenceOption);
-    shellouts_.permitted = scene_.shellouts_permitted;
-    shellouts_.width = scene_.width;
-    shellouts_.height = scene_.height;
-    for (size_t i = 0; i < scene_.frames.size(); i++)
-        frame_index_[scene_.frames[i]] = int(i);
-    if (opt_.division == Division::Sequence)
-        tiles_ = {scene_.area};
-    else
-        tiles_ = make_tiles(scene_.area, opt_.tile);
-    return true;
-}
-
-bool Master::prepare_output()
-{
-    outdir_ = opt_.output.empty() ? dir_name(scene_.output_name) : opt_.output;
-    std::string err;
-    if (!make_dirs(outdir_, err)) {
-        fprintf(stderr, "fc-master: output directory: %s\n", err.c_str());
-        return false;
-    }
-    outdir_ = absolute(outdir_);
-    std::string stem = base_name(scene_.stem);
-    assembly_.reset(new FrameAssembly(outdir_, stem, scene_.digits, scene_.width, scene_.height,
-                                      scene_.frames));
-    assembly_->remove_stale_temps();
-    sched_.reset(new Schedule(tiles_, int(scene_.frames.size()), opt_.division));
-    cells_total_ = long(tiles_.size()) * long(scene_.frames.size());
-    frame_started_.assign(scene_.frames.size(), 0);
-    for (size_t i = 0; i < scene_.frames.size(); i++) {
-        FrameStat fs;
-        fs.frame = scene_.frames[i];
-        fs.file = base_name(assembly_->final_path(int(i)));
-        if (assembly_->exists_complete(int(i))) {
-            fs.resumed = true;
-            sched_->mark_frame_done(int(i));
-            resumed_++;
-        }
-        frame_stats_.push_back(fs);
-    }
-    return true;
-}
-
-bool Master::start_cluster()
-{
-    std::string err;
-    std::string hostfile = opt_.hostfile.empty() ? "" : absolute(opt_.hostfile);
-    if (!cluster_.start(opt_.force_private, hostfile, opt_.pvmd_name,
-                        std::max(60.0, opt_.timeout / 2), err)) {
-        fprintf(stderr, "fc-master: %s\n", err.c_str());
-        return false;
-    }
-    vm_kind_ = cluster_.embedded() ? "private" : "running";
-    if (!opt_.local_slaves)
-        cluster_.wait_for_other_hosts(std::max(30.0, opt_.timeout / 2));
-    spawn_time_ = now();
-    if (!cluster_.spawn_all(opt_.local_slaves, opt_.slaves)) {
-        fprintf(stderr, "fc-master: no slave could be started\n");
-        return false;
-    }
-    for (auto &kv : cluster_.slaves())
-        host_stat(kv.second.host).slaves++;
-    return true;
-}
+} // namespace
 
 // Cut the frames into ranges once the slaves we started said hello (or 5 s passed): sequence
 // division gives each its own range.
@@ -855,103 +599,11 @@ int Master::loop()
     return exit_code_;
 }
 
-void Master::finish(bool ok)
-{
-    if (!opt_.stats.empty() && sched_) {
-        for (auto &kv : job_stats_)
-            if (kv.second.status == "running")
-                kv.second.status = "stopped";
-        for (auto &kv : host_stats_)
-            kv.second.frames = int(host_frames_[kv.first].size());
-        std::string head;
-        head += "  \"scene\": " + Report::json_string(opt_.pov.empty() ? "" : opt_.pov[0]) + ",\n";
-        head += "  \"renderer\": " + Report::json_string(renderer_) + ",\n";
-        head += "  \"output\": " + Report::json_string(outdir_) + ",\n";
-        head += strf("  \"division\": \"%s\",\n", division_name(opt_.division));
-        head += strf("  \"tile\": %d,\n  \"tiles\": %d,\n  \"width\": %d,\n  \"height\": %d,\n",
-                     opt_.tile, int(tiles_.size()), scene_.width, scene_.height);
-        std::string rects;
-        for (size_t k = 0; k < tiles_.size(); k++)
-            rects += strf("%s[%d, %d, %d, %d]", k ? ", " : "", tiles_[k].x0, tiles_[k].y0,
-                          tiles_[k].x1, tiles_[k].y1);
-        head += "  \"tile_rects\": [" + rects + "],\n";
-        head += strf("  \"max_frames_held\": %d,\n", max_frames_held_);
-        head += strf("  \"frame_coherence\": %s,\n", extra_.empty() ? "false" : "true");
-        head += strf("  \"virtual_machine\": \"%s\",\n  \"hosts_used\": %d,\n",
-                     vm_kind_.c_str(), int(cluster_.hosts().size()));
-        struct rusage ru;
-        getrusage(RUSAGE_SELF, &ru);
-        double cpu = double(ru.ru_utime.tv_sec) + ru.ru_utime.tv_usec / 1e6 +
-                     double(ru.ru_stime.tv_sec) + ru.ru_stime.tv_usec / 1e6;
-        head += strf("  \"master_cpu\": %.3f,\n  \"master_max_rss_kb\": %ld,\n", cpu,
-                     long(ru.ru_maxrss));
-        head += strf("  \"messages\": %ld,\n", messages_);
-        head += strf("  \"success\": %s,\n", ok ? "true" : "false");
-        head += strf("  \"elapsed\": %.3f,\n", start_ > 0 ? now() - start_ : 0.0);
-        head += strf("  \"frames_total\": %d,\n  \"frames_rendered\": %d,\n  \"frames_resumed\": %d,\n",
-                     int(scene_.frames.size()), rendered_, resumed_);
-        std::string err;
-        if (!report_.write_json(opt_.stats, head, frame_stats_, job_stats_, host_stats_, err))
-            fprintf(stderr, "fc-master: cannot write statistics: %s\n", err.c_str());
-    }
-}
 
-int Master::run()
-{
-    debug_log("master starts");
-    if (!resolve_programs() || !probe() || !prepare_output()) {
-        if (!tmpdir_.empty())
-            remove_tree(tmpdir_);
-        return 1;
-    }
-    remove_tree(tmpdir_);
-    tmpdir_.clear();
-    if (sched_->finished()) {
-        fprintf(stderr, "fc-master: all %zu frame(s) already exist in %s: nothing to render\n",
-                scene_.frames.size(), outdir_.c_str());
-        finish(true);
-        return 0;
-    }
-    ShelloutResult pre = shellouts_.run(Shellouts::PreScene, scene_.frames.front(),
-                                        assembly_->final_path(0));
-    if (pre.action != ShelloutResult::Continue) {
-        fprintf(stderr, "fc-master: %s\n", pre.message.c_str());
-        return pre.action == ShelloutResult::Quit ? 0 : 1;
-    }
-    debug_log("probes done");
-    if (!start_cluster()) {
-        cluster_.stop();
-        return 1;
-    }
-    debug_log("slaves spawned");
-    int rc = loop();
-    debug_log("loop done");
-    double elapsed = start_ > 0 ? now() - start_ : 0;
-    if (rc != 0)
-        shutdown_slaves();
-    cluster_.stop();
-    debug_log("virtual machine stopped");
-    if (rc == 0 && !failed_ && !skip_post_scene_) {
-        ShelloutResult post = shellouts_.run(Shellouts::PostScene, scene_.frames.back(),
-                                             assembly_->final_path(int(scene_.frames.size()) - 1));
-        if (post.action == ShelloutResult::Fatal) {
-            fprintf(stderr, "fc-master: %s\n", post.message.c_str());
-            rc = 1;
-        }
-    }
-    finish(rc == 0);
-    if (rc == 0 && !opt_.quiet) {
-        for (auto &kv : host_stats_)
-            kv.second.frames = int(host_frames_[kv.first].size());
-        fputs(report_.summary(elapsed, rendered_, resumed_, division_name(opt_.division),
-                              host_stats_).c_str(), stderr);
-        fprintf(stderr, "  (%zu host(s) of a %s virtual machine)\n", cluster_.hosts().size(),
-                vm_kind_ == "private" ? "private" : "running");
-    }
-    return rc;
-}
 
-} // namespace
+} // namespace fc
+
+using namespace fc;
 
 int main(int argc, char **argv)
 {
