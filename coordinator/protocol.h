@@ -1,34 +1,10 @@
-// protocol.h - the fc-master / fc-slave PVM message protocol: every tag, its payload, its reply.
+// protocol.h - the fc-master / fc-slave PVM messages: their tags and payloads, and one
+// pack/unpack pair per message (protocol.cpp).
 //
-// The master has one receive point and switches on the tag. A job is one frame and a set of
-// tiles, rendered by a slave's renderer with one parse; a slave holds at most two jobs (the
-// one rendering and the next), and gets its next job in reply to a result (self-scheduling).
-// The slave keeps one renderer process across jobs, so frame coherence carries its state
-// from frame to frame (see renderer.h). coordinator/README.md has the same table.
-//
-//  Tag            Direction   Payload                                         Reply
-//  -------------  ----------  ----------------------------------------------  ---------------------
-//  FC_HELLO       slave->m    Hello: host, cpus, pid                           FC_SETUP, FC_JOB(s)
-//  FC_SETUP       m->slave    Setup: renderer, cwd, POV-Ray options, extra     none
-//                             options, W, H, frame digits, last frame,
-//                             frame coherence, timeout, nice
-//  FC_JOB         m->slave    Job: job, frame, tiles, their rectangles,        FC_FRAME or FC_FAIL
-//                             threads
-//  FC_FRAME       slave->m    FrameResult: job, frame, tiles, rectangles,      FC_JOB (next work),
-//                             rays, parse and trace seconds, fresh renderer,   or none
-//                             encoding, pixels
-//  FC_PROGRESS    slave->m    Progress: job, frame (heartbeat, every <= 2 s    none
-//                             while rendering)
-//  FC_FAIL        slave->m    Failure: job, frame, scene error or not, wait    scene error: FC_QUIT to
-//                             status, message (POV-Ray's error lines)          all; else FC_JOB (retry
-//                                                                             elsewhere) or none
-//  FC_CANCEL      m->slave    int job (all its cells came from a duplicate)    none
-//  FC_PING        m->slave    empty (keeps an idle slave's wait alive)         none
-//  FC_QUIT        m->slave    empty                                           none; slave exits
-//  FC_TASKEXIT    pvmd->m     int tid          (pvm_notify PvmTaskExit)        -
-//  FC_HOSTDEL     pvmd->m     int pvmd tid     (pvm_notify PvmHostDelete)      -
-//  FC_HOSTADD     pvmd->m     int n, int tids[n] (pvm_notify PvmHostAdd)       -
-//  FC_MASTEREXIT  pvmd->slave int tid          (pvm_notify PvmTaskExit)        - (slave exits)
+// The table in coordinator/README.md ("Protocol") is the one description of the messages:
+// direction, payload and reply of every tag. In short: a job is one frame and a set of
+// tiles, rendered by a slave's renderer with one parse; a slave holds at most two jobs and
+// gets its next one in reply to a result (self-scheduling).
 //
 // Frames are POV-Ray frame numbers; rectangles are 0-based, half-open pixel coordinates
 // [x0,x1) x [y0,y1) in the full image. Data is packed with PvmDataDefault (XDR), so hosts of
