@@ -164,6 +164,7 @@ bool Master::prepare_output()
                                       scene_.frames));
     assembly_->remove_stale_temps();
     sched_.reset(new Schedule(tiles_, int(scene_.frames.size()), opt_.division));
+    sched_->set_cheap_moves(extra_.empty());
     cells_total_ = long(tiles_.size()) * long(scene_.frames.size());
     frame_started_.assign(scene_.frames.size(), 0);
     for (size_t i = 0; i < scene_.frames.size(); i++) {

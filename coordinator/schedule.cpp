@@ -294,7 +294,7 @@ void Schedule::divide(int ri, int index)
         }
         // Move tiles from the most to the least loaded member while it pays.
         bool moved = false;
-        bool may_move = r.lagging && index - r.last_move >= kMoveGap;
+        bool may_move = cheap_moves_ || (r.lagging && index - r.last_move >= kMoveGap);
         for (int moves = 0; may_move && moves < tiles(); moves++) {
             int over = m[0], under = m[0];
             for (int s : m) {

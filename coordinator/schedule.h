@@ -19,10 +19,10 @@
 // holds a few frames, not all of them: a range never divides a frame more than kWindow frames
 // past its oldest unfinished one. A slave that reaches that limit waits, and the next
 // division moves tiles from the slowest to the fastest slaves (by measured speed) until no
-// share exceeds its speed's by more than 20%, at most once every kMoveGap frames: tiles move
-// only when the slaves really drift apart, since a moved tile costs a full re-trace on its
-// new slave (with frame coherence its renderer starts afresh, and such a first frame does not
-// count in the slave's speed).
+// share exceeds its speed's by more than 20%, at most once every kMoveGap frames: with frame
+// coherence tiles move only when the slaves really drift apart, since a moved tile costs a
+// full re-trace on its new slave (its renderer starts afresh, and such a first frame does not
+// count in the slave's speed). Without fc (set_cheap_moves) every division balances.
 //
 // Load balancing: a slave whose range is finished joins the range with the most work left per
 // slave (frame division) or splits it in the middle, taking the later half (sequence and
@@ -91,6 +91,10 @@ public:
 
     // Cut the missing frames into `parts` ranges (sequence, hybrid) or one (frame).
     void plan(int parts);
+
+    // Without frame coherence a moved tile costs its new slave nothing extra: then every
+    // division balances by speed, not only after a slave had to wait.
+    void set_cheap_moves(bool cheap) { cheap_moves_ = cheap; }
 
     // Slaves: a slave joins when it is ready (host identifies its machine for retries).
     void add_slave(int slave, int host);
@@ -171,6 +175,7 @@ private:
     std::map<int, SlaveState> slaves_;
     std::map<int, double> speed_;       // pixels per second, smoothed
     double job_seconds_ = 0;            // how long a job takes, smoothed
+    bool cheap_moves_ = false;
     std::deque<Orphan> orphans_;
     std::map<int, Job> jobs_;
     int next_id_ = 1;

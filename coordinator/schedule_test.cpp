@@ -105,6 +105,27 @@ static void test_window_and_rebalance()
     CHECK(mine.size() > 6);
 }
 
+static void test_cheap_moves_balance_every_frame()
+{
+    Schedule s(make_tiles(kArea, 40), 10, Division::Frame);
+    s.set_cheap_moves(true);
+    s.add_slave(1, 100);
+    s.add_slave(2, 200);
+    s.plan(1);
+    const Job *a = s.next_job(1, 0, true);
+    Job first_a = *a;
+    const Job *b = s.next_job(2, 0, true);
+    Job first_b = *b;
+    CHECK(first_a.tiles.size() == 6 && first_b.tiles.size() == 6);
+    // Slave 1 renders twice as fast: without fc, the next frame it asks for gives it more.
+    s.note_speed(1, 2e5, 1.0);
+    s.note_speed(2, 1e5, 1.0);
+    deliver(s, first_a);
+    deliver(s, first_b);
+    const Job *c = s.next_job(1, 1, true);
+    CHECK(c && c->index == 1 && c->tiles.size() >= 7);
+}
+
 static void test_resume_skips_done_frames()
 {
     Schedule s({kArea}, 10, Division::Sequence);
@@ -320,6 +341,7 @@ int main()
     test_sequence_ranges();
     test_frame_division_keeps_tiles();
     test_window_and_rebalance();
+    test_cheap_moves_balance_every_frame();
     test_resume_skips_done_frames();
     test_idle_slave_splits_range();
     test_dead_slave_orphans();
