@@ -45,11 +45,10 @@ bool Cluster::start(bool force_private, const std::string &hostfile, const std::
     return true;
 }
 
-// A private pvmd adds the hosts of its hostfile in the background.
-void Cluster::wait_for_other_hosts(double timeout)
+void Cluster::wait_for_hosts(size_t want, double timeout)
 {
     double deadline = now() + timeout;
-    while (now() < deadline) {
+    for (;;) {
         int nhost = 0, narch = 0;
         struct pvmhostinfo *hi = nullptr;
         if (pvm_config(&nhost, &narch, &hi) < 0)
@@ -63,11 +62,27 @@ void Cluster::wait_for_other_hosts(double timeout)
             hosts_[h.dtid] = h;
             pvm_notify(PvmHostDelete, FC_HOSTDEL, 1, &h.dtid);
         }
-        for (auto &kv : hosts_)
-            if (kv.first != my_dtid_)
-                return;
-        usleep(200000);
+        if (hosts_.size() >= want || now() >= deadline)
+            return;
+        usleep(100000);
     }
+}
+
+int Cluster::hostfile_hosts(const std::string &hostfile)
+{
+    FILE *f = fopen(hostfile.c_str(), "r");
+    if (!f)
+        return 0;
+    int n = 0;
+    char line[1024];
+    while (fgets(line, sizeof line, f)) {
+        char name[512];
+        if (sscanf(line, " %511s", name) == 1 && name[0] != '#' && name[0] != '*' &&
+            name[0] != '&')
+            n++;
+    }
+    fclose(f);
+    return n;
 }
 
 bool Cluster::spawn_on(HostInfo &host, int count)

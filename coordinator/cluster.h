@@ -47,10 +47,14 @@ public:
                double timeout, std::string &err);
     void stop() { vm_.stop(); }
     bool embedded() const { return vm_.embedded(); }
+
+    // Hosts a pvmd host file starts (lines that are not comments, defaults or '&' entries).
+    static int hostfile_hosts(const std::string &hostfile);
     int my_host() const { return my_dtid_; }
 
-    // With no slaves on the master's host: wait (bounded) until another host has joined.
-    void wait_for_other_hosts(double timeout);
+    // Wait (bounded) until the machine has `want` hosts: a private pvmd adds the hosts of its
+    // host file in the background.
+    void wait_for_hosts(size_t want, double timeout);
 
     // Spawn `count` slaves (program slave_prog) on host; returns false if none started.
     bool spawn_on(HostInfo &host, int count);

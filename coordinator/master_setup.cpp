@@ -191,8 +191,15 @@ bool Master::start_cluster()
         return false;
     }
     vm_kind_ = cluster_.embedded() ? "private" : "running";
+    // A private pvmd adds its host file's hosts in the background: wait (bounded) for them,
+    // or the master's own slaves could finish a short render alone.
+    size_t want = 1;
+    if (!hostfile.empty() && cluster_.embedded())
+        want += size_t(Cluster::hostfile_hosts(hostfile));
     if (!opt_.local_slaves)
-        cluster_.wait_for_other_hosts(std::max(30.0, opt_.timeout / 2));
+        want = std::max(want, size_t(2));
+    if (want > 1)
+        cluster_.wait_for_hosts(want, std::max(30.0, opt_.timeout / 2));
     spawn_time_ = now();
     if (!cluster_.spawn_all(opt_.local_slaves, opt_.slaves)) {
         fprintf(stderr, "fc-master: no slave could be started\n");

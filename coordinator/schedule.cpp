@@ -426,9 +426,15 @@ bool Schedule::find_range(int slave)
     if (best < 0)
         return false;
     Range &r = ranges_[size_t(best)];
-    if (r.members.empty() || division_ == Division::Frame) {
-        // A newcomer to a range whose tiles have owners gets its share by rebalancing.
-        r.lagging = r.lagging || !r.owner.empty();
+    // Frame division shares a range among as many slaves as it has tiles; more split it.
+    if (r.members.empty() ||
+        (division_ == Division::Frame && int(r.members.size()) < tiles())) {
+        // A newcomer to a range whose tiles have owners gets its share by rebalancing, at
+        // the next division.
+        if (!r.owner.empty()) {
+            r.lagging = true;
+            r.last_move = -1000;
+        }
         r.members.push_back(slave);
         s.range = best;
         s.cursor = r.frontier;

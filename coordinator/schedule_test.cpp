@@ -126,6 +126,20 @@ static void test_cheap_moves_balance_every_frame()
     CHECK(c && c->index == 1 && c->tiles.size() >= 7);
 }
 
+static void test_more_slaves_than_tiles()
+{
+    Schedule s(make_tiles(kArea, 80), 12, Division::Frame);     // 4 tiles
+    for (int slave = 1; slave <= 6; slave++)
+        s.add_slave(slave, 100 * slave);
+    s.plan(1);
+    // Four slaves share the frames' tiles; the other two take later frames of their own.
+    std::set<int> busy;
+    for (int slave = 1; slave <= 6; slave++)
+        if (s.next_job(slave, 0, false))
+            busy.insert(slave);
+    CHECK(busy.size() == 6);
+}
+
 static void test_resume_skips_done_frames()
 {
     Schedule s({kArea}, 10, Division::Sequence);
@@ -342,6 +356,7 @@ int main()
     test_frame_division_keeps_tiles();
     test_window_and_rebalance();
     test_cheap_moves_balance_every_frame();
+    test_more_slaves_than_tiles();
     test_resume_skips_done_frames();
     test_idle_slave_splits_range();
     test_dead_slave_orphans();
