@@ -120,15 +120,18 @@ bool Master::probe()
     }
     // Both questions to POV-Ray at once: each start of povray-fc costs a tenth of a second.
     double limit = std::max(30.0, opt_.timeout);
-    std::string scene_err, shell_err;
-    bool shell_ok = false;
-    std::thread shell([&] {
-        shell_ok = probe_shellouts(renderer_, opt_.pov, cwd_, tmpdir_, limit, shellouts_, shell_err);
+    std::string scene_err, ini_err;
+    bool ini_ok = false;
+    ResolvedOptions ini;
+    std::thread resolved([&] {
+        ini_ok = probe_resolved_options(renderer_, opt_.pov, cwd_, tmpdir_, limit, ini, ini_err);
     });
     bool scene_ok = probe_scene(renderer_, opt_.pov, cwd_, tmpdir_, limit, scene_, scene_err);
-    shell.join();
-    err = !scene_ok ? scene_err : shell_err;
-    if (!scene_ok || !shell_ok) {
+    resolved.join();
+    err = !scene_ok ? scene_err : ini_err;
+    if (scene_ok && ini_ok && !set_frames(scene_, ini, err))
+        ini_ok = false;
+    if (!scene_ok || !ini_ok) {
         fprintf(stderr, "fc-master: %s", err.c_str());
         if (err.empty() || err.back() != '\n')
             fputc('\n', stderr);
@@ -138,6 +141,7 @@ bool Master::probe()
     // the channel's patches come after fc's.
     if (opt_.fc)
         extra_.push_back(kFrameCoherenceOption);
+    read_shellouts(ini, shellouts_);
     shellouts_.permitted = scene_.shellouts_permitted;
     shellouts_.width = scene_.width;
     shellouts_.height = scene_.height;

@@ -8,6 +8,7 @@
 #include <cctype>
 #include <cstdio>
 #include <cstring>
+#include <fstream>
 
 #include "util.h"
 
@@ -113,15 +114,12 @@ bool probe_scene(const std::string &renderer, const std::vector<std::string> &op
             info.shellouts_permitted = false;
 
     bool marker = false, have_res = false, have_out = false;
-    int subset_count = 1;
     for (size_t i = 0; i < lines.size(); i++) {
         const std::string &l = lines[i];
         int a, b, c, d, e, f;
         char on[8];
         if (l.find(kProbeMarker) != std::string::npos)
             marker = true;
-        else if (sscanf(l.c_str(), "Rendering frame %d of %d", &a, &b) == 2)
-            subset_count = b, info.animated = true;
         else if (sscanf(l.c_str(), " Initial Frame: %d Final Frame: %d", &a, &b) == 2)
             info.initial_frame = a, info.final_frame = b, info.animated = true;
         else if (sscanf(l.c_str(), " Frame Step: %d", &a) == 1)
@@ -176,16 +174,79 @@ bool probe_scene(const std::string &renderer, const std::vector<std::string> &op
             return false;
         }
         std::string num = name.substr(name.size() - size_t(info.digits));
-        int first = atoi(num.c_str());
+        info.first_frame = atoi(num.c_str());
         info.stem = name.substr(0, name.size() - size_t(info.digits));
-        int last = first + subset_count - 1;
-        for (int f = first; f <= last; f += info.frame_step)
-            info.frames.push_back(f);
     } else {
         info.digits = 0;
         info.stem = name;
         info.frames.push_back(0);
     }
+    return true;
+}
+
+namespace {
+
+std::string ini_value(const std::string &v)
+{
+    std::string t = trim(v);
+    if (t.size() >= 2 && t.front() == '"' && t.back() == '"')
+        return t.substr(1, t.size() - 2);
+    return t;
+}
+
+} // namespace
+
+bool probe_resolved_options(const std::string &renderer, const std::vector<std::string> &options,
+                            const std::string &cwd, const std::string &tmpdir, double timeout,
+                            ResolvedOptions &out, std::string &err)
+{
+    std::string ini = tmpdir + "/resolved.ini";
+    std::vector<std::string> argv = {renderer};
+    argv.insert(argv.end(), options.begin(), options.end());
+    argv.push_back("+GI" + ini);
+    argv.push_back("Frame_Channel=" + tmpdir + "/no-such-directory/channel");
+    std::vector<std::string> lines;
+    int status = 0;
+    if (!run_collect(argv, cwd, timeout, lines, status, err))
+        return false;
+    std::ifstream in(ini);
+    if (!in) {
+        err = renderer + " wrote no resolved options (Create_Ini); fc-master needs povray-fc "
+                         "with the frame channel (patch 0020)";
+        return false;
+    }
+    std::string line;
+    while (std::getline(in, line)) {
+        size_t eq = line.find('=');
+        if (eq != std::string::npos && line[0] != ';')
+            out[trim(line.substr(0, eq))] = ini_value(line.substr(eq + 1));
+    }
+    return true;
+}
+
+bool set_frames(SceneInfo &info, const ResolvedOptions &ini, std::string &err)
+{
+    if (!info.animated)
+        return true;
+    auto get = [&](const char *key, double fallback) {
+        auto it = ini.find(key);
+        return it == ini.end() ? fallback : atof(it->second.c_str());
+    };
+    auto cyc = ini.find("Cyclic_Animation");
+    bool cyclic = cyc != ini.end() && (cyc->second == "On" || cyc->second == "on");
+    // AnimationProcessing's arithmetic: a cyclic animation's final frame is one past the
+    // last; a subset bound in (0, 1) is a fraction of the animation.
+    int initial = std::max(int(get("Initial_Frame", 1)), 0);
+    int final = std::max(int(get("Final_Frame", 1)), initial) + (cyclic ? 1 : 0);
+    int end = final - (cyclic ? 1 : 0);
+    if (ini.count("Subset_End_Frame")) {
+        float p = std::max(float(get("Subset_End_Frame", 0)), 0.0f);
+        end = (p == 0 || p >= 1) ? int(p) : int(float(final - initial + 1) * p);
+        end = std::max(end, info.first_frame);
+    }
+    info.frames.clear();
+    for (int f = info.first_frame; f <= end; f += info.frame_step)
+        info.frames.push_back(f);
     if (info.frames.empty()) {
         err = "no frames to render";
         return false;

@@ -9,6 +9,7 @@
 // use them, renders nothing and writes no file. See probe_scene().
 #pragma once
 
+#include <map>
 #include <string>
 #include <vector>
 
@@ -25,6 +26,7 @@ struct SceneInfo {
     bool animated = false;
     int initial_frame = 0, final_frame = 0, frame_step = 1;
     bool cyclic = false;
+    int first_frame = 0;            // first frame of the subset (from the output name)
     std::vector<int> frames;        // frames to render (subset, step applied); {0} for a still
     std::string output_name;        // POV-Ray's output file name for the first frame
     std::string stem;               // output_name without frame number and ".tga"
@@ -40,6 +42,22 @@ struct SceneInfo {
 bool probe_scene(const std::string &renderer, const std::vector<std::string> &options,
                  const std::string &cwd, const std::string &tmpdir, double timeout,
                  SceneInfo &info, std::string &err);
+
+// POV-Ray's resolved options as its Create_Ini writes them (key -> value, quotes removed):
+// runs `renderer options... +GI<ini> Frame_Channel=<a path that cannot be opened>`, which
+// writes the INI file and stops before anything runs (patch 0020 opens the channel first).
+// A renderer without the frame channel writes none and is refused here.
+typedef std::map<std::string, std::string> ResolvedOptions;
+bool probe_resolved_options(const std::string &renderer, const std::vector<std::string> &options,
+                            const std::string &cwd, const std::string &tmpdir, double timeout,
+                            ResolvedOptions &out, std::string &err);
+
+// The frames of an animation: from info.first_frame to the subset's end, as
+// AnimationProcessing computes it from the resolved options (Subset_End_Frame as a frame or a
+// fraction of the animation, Final_Frame, Cyclic_Animation), every Frame_Step. POV-Ray's
+// console may not print "Rendering frame k of n" before a short run ends, so the count is
+// not read from there.
+bool set_frames(SceneInfo &info, const ResolvedOptions &ini, std::string &err);
 
 // Run argv to completion (or timeout) in cwd, collecting its output lines and wait status.
 bool run_collect(const std::vector<std::string> &argv, const std::string &cwd, double timeout,

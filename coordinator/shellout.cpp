@@ -7,7 +7,6 @@
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
-#include <fstream>
 
 #include "povray.h"
 #include "util.h"
@@ -20,15 +19,6 @@ const char *const kEventKeys[Shellouts::kEvents] = {"Pre_Scene", "Pre_Frame", "P
                                                     "Post_Scene"};
 const char *const kEventNames[Shellouts::kEvents] = {"pre-scene", "pre-frame", "post-frame",
                                                      "post-scene"};
-
-// An INI value as POV-Ray writes it: maybe in double quotes.
-std::string ini_value(const std::string &v)
-{
-    std::string t = trim(v);
-    if (t.size() >= 2 && t.front() == '"' && t.back() == '"')
-        return t.substr(1, t.size() - 2);
-    return t;
-}
 
 // Split "program params" at the first space outside quotes (POV-Ray's ExtractCommand).
 void split_command(const std::string &raw, std::string &program, std::string &params)
@@ -126,57 +116,36 @@ ShelloutResult Shellouts::run(Event event, int frame, const std::string &output)
     return r;
 }
 
-bool probe_shellouts(const std::string &renderer, const std::vector<std::string> &options,
-                     const std::string &cwd, const std::string &tmpdir, double timeout,
-                     Shellouts &out, std::string &err)
+void read_shellouts(const ResolvedOptions &ini, Shellouts &out)
 {
-    std::string ini = tmpdir + "/resolved.ini";
-    std::vector<std::string> argv = {renderer};
-    argv.insert(argv.end(), options.begin(), options.end());
-    argv.push_back("+GI" + ini);
-    argv.push_back("Frame_Channel=" + tmpdir + "/no-such-directory/channel");
-    std::vector<std::string> lines;
-    int status = 0;
-    if (!run_collect(argv, cwd, timeout, lines, status, err))
-        return false;
-    std::ifstream in(ini);
-    if (!in) {
-        err = renderer + " wrote no resolved options (Create_Ini); is it povray-fc with the "
-                         "frame channel (patch 0020)?";
-        return false;
-    }
-    double final_clock = 1, initial_clock = 0;
-    int initial_frame = 1, final_frame = 1;
-    bool cyclic = false;
-    std::string line;
-    while (std::getline(in, line)) {
-        size_t eq = line.find('=');
-        if (eq == std::string::npos)
-            continue;
-        std::string key = trim(line.substr(0, eq)), value = ini_value(line.substr(eq + 1));
-        for (int e = 0; e < Shellouts::kEvents; e++) {
-            if (key == std::string(kEventKeys[e]) + "_Command") {
-                out.commands[e].command = value;
-            } else if (key == std::string(kEventKeys[e]) + "_Return" && !value.empty()) {
-                size_t k = (value[0] == '-' || value[0] == '!') ? 1 : 0;
-                out.commands[e].negate = k == 1;
-                if (k < value.size())
-                    out.commands[e].action = char(tolower((unsigned char)value[k]));
-            }
+    for (int e = 0; e < Shellouts::kEvents; e++) {
+        auto c = ini.find(std::string(kEventKeys[e]) + "_Command");
+        if (c != ini.end())
+            out.commands[e].command = c->second;
+        auto r = ini.find(std::string(kEventKeys[e]) + "_Return");
+        if (r != ini.end() && !r->second.empty()) {
+            const std::string &v = r->second;
+            size_t k = (v[0] == '-' || v[0] == '!') ? 1 : 0;
+            out.commands[e].negate = k == 1;
+            if (k < v.size())
+                out.commands[e].action = char(tolower((unsigned char)v[k]));
         }
-        if (key == "Initial_Clock") initial_clock = atof(value.c_str());
-        else if (key == "Final_Clock") final_clock = atof(value.c_str());
-        else if (key == "Initial_Frame") initial_frame = atoi(value.c_str());
-        else if (key == "Final_Frame") final_frame = atoi(value.c_str());
-        else if (key == "Cyclic_Animation") cyclic = value == "On" || value == "on";
-        else if (key == "Input_File_Name") out.scene = base_name(value);
     }
+    auto num = [&](const char *key, double fallback) {
+        auto it = ini.find(key);
+        return it == ini.end() ? fallback : atof(it->second.c_str());
+    };
+    auto cyc = ini.find("Cyclic_Animation");
+    bool cyclic = cyc != ini.end() && (cyc->second == "On" || cyc->second == "on");
+    auto in = ini.find("Input_File_Name");
+    if (in != ini.end())
+        out.scene = base_name(in->second);
     // AnimationProcessing's clock: a cyclic animation's final frame is one past the last.
-    int span = final_frame + (cyclic ? 1 : 0) - initial_frame;
+    int initial_frame = int(num("Initial_Frame", 1));
+    int span = int(num("Final_Frame", 1)) + (cyclic ? 1 : 0) - initial_frame;
     out.initial_frame = initial_frame;
-    out.initial_clock = initial_clock;
-    out.clock_delta = span != 0 ? (final_clock - initial_clock) / double(span) : 0;
-    return true;
+    out.initial_clock = num("Initial_Clock", 0);
+    out.clock_delta = span != 0 ? (num("Final_Clock", 1) - out.initial_clock) / double(span) : 0;
 }
 
 } // namespace fc

@@ -16,6 +16,8 @@
 #include <string>
 #include <vector>
 
+#include "povray.h"
+
 namespace fc {
 
 struct ShelloutResult {
@@ -49,11 +51,8 @@ public:
     std::string expand(const std::string &command, int frame, const std::string &output) const;
 };
 
-// Read the user's shell-out commands from POV-Ray's resolved options: runs `renderer
-// options... +GI<ini> Frame_Channel=<a path that cannot be opened>`, which writes the INI
-// file and stops before anything runs (patch 0020 opens the channel first).
-bool probe_shellouts(const std::string &renderer, const std::vector<std::string> &options,
-                     const std::string &cwd, const std::string &tmpdir, double timeout,
-                     Shellouts &out, std::string &err);
+// The user's shell-out commands and what %k needs, from POV-Ray's resolved options
+// (probe_resolved_options).
+void read_shellouts(const ResolvedOptions &ini, Shellouts &out);
 
 } // namespace fc

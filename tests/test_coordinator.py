@@ -181,7 +181,8 @@ def test_ini_file_renders_unchanged(coordinator, coordinator_references, tmp_pat
     ["+W96", "+H72", "+KFI1", "+KFF9", "+KC"],                       # cyclic: digits of 10
     ["+W96", "+H72", "+KFI3", "+KFF11", "Frame_Step=3"],             # frames 3, 6, 9
     ["+W96", "+H72", "+KFI98", "+KFF101"],                           # names widen to 3 digits
-], ids=["subset", "cyclic", "step", "digits"])
+    ["+W96", "+H72", "+KFI1", "+KFF12", "Subset_End_Frame=0.5"],     # half: moving01..06
+], ids=["subset", "cyclic", "step", "digits", "fraction"])
 def test_frame_ranges_and_names_follow_povray(coordinator, coordinator_references, tmp_path,
                                              opts):
     out = tmp_path / "out"
