@@ -1,5 +1,5 @@
 // report.h - what fc-master tells the user: progress while rendering, a per-host summary at
-// the end, and the --stats JSON file (per frame and per work unit: host, rays, time).
+// the end, and the --stats JSON file (per frame and per job: host, rays, time).
 #pragma once
 
 #include <map>

@@ -195,12 +195,13 @@ std::vector<int> Schedule::remove_slave(int slave)
     return lost;
 }
 
-int Schedule::oldest_unfinished(const Range &range) const
+int Schedule::oldest_unfinished(Range &range) const
 {
-    for (int i = range.lo; i <= range.hi; i++)
-        if (!frame_done(i))
-            return i;
-    return range.hi + 1;
+    // Frames only ever get done, so the scan resumes where it stopped: O(1) amortized.
+    range.oldest = std::max(range.oldest, range.lo);
+    while (range.oldest <= range.hi && frame_done(range.oldest))
+        range.oldest++;
+    return range.oldest;
 }
 
 long Schedule::range_work(const Range &range) const

@@ -131,6 +131,7 @@ private:
     struct Range {
         int lo = 0, hi = 0;             // frame indices, inclusive; hi shrinks when split
         int frontier = 0;               // first index not divided among the members yet
+        int oldest = 0;                 // no frame before it is unfinished (only grows)
         std::vector<int> members;
         std::map<int, std::map<int, std::vector<int>>> reserved;   // index -> slave -> tiles
         std::map<int, int> owner;       // tile -> slave that had it last
@@ -161,7 +162,7 @@ private:
     void leave_range(int slave);
     void orphan(int index, const std::vector<int> &tiles, int failures, int avoid_host);
     std::vector<int> missing(int index, const std::vector<int> &tiles) const;
-    int oldest_unfinished(const Range &range) const;
+    int oldest_unfinished(Range &range) const;
     long range_work(const Range &range) const;
 
     std::vector<Rect> tiles_;
