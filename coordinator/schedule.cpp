@@ -10,7 +10,10 @@ namespace fc {
 
 namespace {
 
-const double kImbalance = 1.2;      // move tiles when a slave's share exceeds its speed's by this
+// Move tiles while a slave's share exceeds its speed's by this much: by little when moves are
+// free (no fc), by more when a move costs its new slave a fresh renderer.
+const double kImbalanceCheap = 1.05;
+const double kImbalance = 1.2;
 const double kSpeedWeight = 0.3;    // weight of the newest measurement in a slave's speed
 
 } // namespace
@@ -302,7 +305,8 @@ void Schedule::divide(int ri, int index)
                 if (load[s] / target[s] > load[over] / target[over]) over = s;
                 if (load[s] / target[s] < load[under] / target[under]) under = s;
             }
-            if (over == under || share[over].size() <= 1 || load[over] / target[over] <= kImbalance)
+            double limit = cheap_moves_ ? kImbalanceCheap : kImbalance;
+            if (over == under || share[over].size() <= 1 || load[over] / target[over] <= limit)
                 break;
             // The tile of `over` nearest to `under`'s tiles (raster distance) keeps shares compact.
             int pick = -1;
