@@ -32,6 +32,9 @@ FC_MASK_PLUGIN := $(FC_BUILD)/povrayfc-mask.so
 FC_SOURCES := $(shell find $(TOP)/povray-fc -type f \( -name '*.cpp' -o -name '*.h' -o -name 'CMakeLists.txt' \) 2>/dev/null)
 
 PATCHES   := $(TOP)/patches/series $(wildcard $(TOP)/patches/*.patch)
+# Files our patches add to POV-Ray: unix/prebuild.sh lists the sources in the
+# Makefiles, so a new file must re-run it (and configure) once.
+PATCH_NEW_FILES := $(shell awk '/^--- \/dev\/null/ { getline; print $$2 }' $(TOP)/patches/*.patch 2>/dev/null)
 
 # ccache: one cache for every clone. base_dir makes paths relative and nohashdir
 # drops the working directory from -g builds, so a fresh clone (CI) hits the cache.
@@ -95,10 +98,10 @@ $(STAMPS)/patched: $(STAMPS)/unpacked $(PATCHES)
 	  { quilt push -a -q >/dev/null || [ $$? = 2 ]; }
 	touch $@
 
-# Flags that, when changed, must re-run configure.
+# Flags (and added files) that, when changed, must re-run prebuild and configure.
 $(STAMPS)/configure-args: FORCE | deps
 	@mkdir -p $(STAMPS)
-	@echo 'g++ via $(CCACHE_PATH) | $(POV_CXXFLAGS) | $(POV_CPPFLAGS) | $(POV_LDFLAGS) | $(FC_LIB) | $(COMPILED_BY)' > $@.new
+	@echo 'g++ via $(CCACHE_PATH) | $(POV_CXXFLAGS) | $(POV_CPPFLAGS) | $(POV_LDFLAGS) | $(FC_LIB) | $(COMPILED_BY) | $(PATCH_NEW_FILES)' > $@.new
 	@if cmp -s $@.new $@; then rm $@.new; else mv $@.new $@; fi
 
 # Configure once per set of flags. Our patches never touch the build system (our

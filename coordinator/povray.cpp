@@ -8,19 +8,21 @@
 #include <cctype>
 #include <cstdio>
 #include <cstring>
+#include <fstream>
 
 #include "util.h"
 
 namespace fc {
 
 const char *const kFrameCoherenceOption = "Frame_Coherence=on";
-const char *const kFrameCoherenceFeature = "Frame coherence";
 
 namespace {
 
 const char *const kProbeMarker = "fc-master probe: options read";
+const char *const kProbeShellout = "/bin/true";
 
-// Run argv to completion (or timeout), collecting all output lines.
+} // namespace
+
 bool run_collect(const std::vector<std::string> &argv, const std::string &cwd, double timeout,
                  std::vector<std::string> &lines, int &status, std::string &err)
 {
@@ -47,6 +49,8 @@ bool run_collect(const std::vector<std::string> &argv, const std::string &cwd, d
     return true;
 }
 
+namespace {
+
 // Join POV-Ray's 80-column wrapped physical lines starting at index i until `until` appears.
 std::string join_until(const std::vector<std::string> &lines, size_t i, const char *until)
 {
@@ -63,7 +67,8 @@ bool is_noise(const std::string &line)
 {
     return line.find("cannot open the user configuration file") != std::string::npos ||
            starts_with(line, "Rendered ") || starts_with(line, "----") ||
-           starts_with(line, "====") || line.find(kProbeMarker) != std::string::npos;
+           starts_with(line, "====") || line.find(kProbeMarker) != std::string::npos ||
+           line.find(kProbeShellout) != std::string::npos;
 }
 
 } // namespace
@@ -94,21 +99,27 @@ bool probe_scene(const std::string &renderer, const std::vector<std::string> &op
     std::vector<std::string> argv = {renderer};
     argv.insert(argv.end(), options.begin(), options.end());
     argv.insert(argv.end(), {"-D", "+FT", "-UA", "+HI" + inc});
+    for (const char *cmd : kShelloutOptions)
+        argv.push_back(std::string(cmd) + "=");
+    argv.push_back(std::string("Pre_Scene_Command=") + kProbeShellout);
+    argv.push_back("Pre_Scene_Return=i");
     std::vector<std::string> lines;
     int status = 0;
     if (!run_collect(argv, cwd, timeout, lines, status, err))
         return false;
+    // POV-Ray says so when povray.conf forbids shell-outs.
+    info.shellouts_permitted = true;
+    for (const std::string &l : lines)
+        if (l.find(std::string("shellout '") + kProbeShellout + "' prohibited") != std::string::npos)
+            info.shellouts_permitted = false;
 
     bool marker = false, have_res = false, have_out = false;
-    int subset_count = 1;
     for (size_t i = 0; i < lines.size(); i++) {
         const std::string &l = lines[i];
         int a, b, c, d, e, f;
         char on[8];
         if (l.find(kProbeMarker) != std::string::npos)
             marker = true;
-        else if (sscanf(l.c_str(), "Rendering frame %d of %d", &a, &b) == 2)
-            subset_count = b, info.animated = true;
         else if (sscanf(l.c_str(), " Initial Frame: %d Final Frame: %d", &a, &b) == 2)
             info.initial_frame = a, info.final_frame = b, info.animated = true;
         else if (sscanf(l.c_str(), " Frame Step: %d", &a) == 1)
@@ -131,13 +142,7 @@ bool probe_scene(const std::string &renderer, const std::vector<std::string> &op
         }
     }
     if (!marker || !have_res || !have_out) {
-        std::string excerpt = error_excerpt(lines);
-        if (excerpt.empty()) {
-            // Nothing recognisable: show the end of the output.
-            for (size_t k = lines.size() > 8 ? lines.size() - 8 : 0; k < lines.size(); k++)
-                if (!is_noise(lines[k]))
-                    excerpt += lines[k] + "\n";
-        }
+        std::string excerpt = failure_excerpt(lines);
         err = strf("%s rejected the scene or its options (%s):\n%s", renderer.c_str(),
                   describe_status(status).c_str(), excerpt.c_str());
         return false;
@@ -169,16 +174,79 @@ bool probe_scene(const std::string &renderer, const std::vector<std::string> &op
             return false;
         }
         std::string num = name.substr(name.size() - size_t(info.digits));
-        int first = atoi(num.c_str());
+        info.first_frame = atoi(num.c_str());
         info.stem = name.substr(0, name.size() - size_t(info.digits));
-        int last = first + subset_count - 1;
-        for (int f = first; f <= last; f += info.frame_step)
-            info.frames.push_back(f);
     } else {
         info.digits = 0;
         info.stem = name;
         info.frames.push_back(0);
     }
+    return true;
+}
+
+namespace {
+
+std::string ini_value(const std::string &v)
+{
+    std::string t = trim(v);
+    if (t.size() >= 2 && t.front() == '"' && t.back() == '"')
+        return t.substr(1, t.size() - 2);
+    return t;
+}
+
+} // namespace
+
+bool probe_resolved_options(const std::string &renderer, const std::vector<std::string> &options,
+                            const std::string &cwd, const std::string &tmpdir, double timeout,
+                            ResolvedOptions &out, std::string &err)
+{
+    std::string ini = tmpdir + "/resolved.ini";
+    std::vector<std::string> argv = {renderer};
+    argv.insert(argv.end(), options.begin(), options.end());
+    argv.push_back("+GI" + ini);
+    argv.push_back("Frame_Channel=" + tmpdir + "/no-such-directory/channel");
+    std::vector<std::string> lines;
+    int status = 0;
+    if (!run_collect(argv, cwd, timeout, lines, status, err))
+        return false;
+    std::ifstream in(ini);
+    if (!in) {
+        err = renderer + " wrote no resolved options (Create_Ini); fc-master needs povray-fc "
+                         "with the frame channel (patch 0020)";
+        return false;
+    }
+    std::string line;
+    while (std::getline(in, line)) {
+        size_t eq = line.find('=');
+        if (eq != std::string::npos && line[0] != ';')
+            out[trim(line.substr(0, eq))] = ini_value(line.substr(eq + 1));
+    }
+    return true;
+}
+
+bool set_frames(SceneInfo &info, const ResolvedOptions &ini, std::string &err)
+{
+    if (!info.animated)
+        return true;
+    auto get = [&](const char *key, double fallback) {
+        auto it = ini.find(key);
+        return it == ini.end() ? fallback : atof(it->second.c_str());
+    };
+    auto cyc = ini.find("Cyclic_Animation");
+    bool cyclic = cyc != ini.end() && (cyc->second == "On" || cyc->second == "on");
+    // AnimationProcessing's arithmetic: a cyclic animation's final frame is one past the
+    // last; a subset bound in (0, 1) is a fraction of the animation.
+    int initial = std::max(int(get("Initial_Frame", 1)), 0);
+    int final = std::max(int(get("Final_Frame", 1)), initial) + (cyclic ? 1 : 0);
+    int end = final - (cyclic ? 1 : 0);
+    if (ini.count("Subset_End_Frame")) {
+        float p = std::max(float(get("Subset_End_Frame", 0)), 0.0f);
+        end = (p == 0 || p >= 1) ? int(p) : int(float(final - initial + 1) * p);
+        end = std::max(end, info.first_frame);
+    }
+    info.frames.clear();
+    for (int f = info.first_frame; f <= end; f += info.frame_step)
+        info.frames.push_back(f);
     if (info.frames.empty()) {
         err = "no frames to render";
         return false;
@@ -186,62 +254,28 @@ bool probe_scene(const std::string &renderer, const std::vector<std::string> &op
     return true;
 }
 
-bool renderer_version(const std::string &renderer, bool &has_fc, std::string &first_line,
-                      std::string &err)
+const char *const kShelloutOptions[6] = {"Pre_Scene_Command", "Pre_Frame_Command",
+                                         "Post_Frame_Command", "Post_Scene_Command",
+                                         "User_Abort_Command", "Fatal_Error_Command"};
+
+std::string failure_excerpt(const std::vector<std::string> &tail)
 {
-    std::vector<std::string> lines;
-    int status = 0;
-    if (!run_collect({renderer, "--version"}, "", 30, lines, status, err))
-        return false;
-    if (!WIFEXITED(status) || WEXITSTATUS(status) == 126 || WEXITSTATUS(status) == 127) {
-        err = strf("%s --version failed (%s)", renderer.c_str(), describe_status(status).c_str());
-        for (const std::string &l : lines)
-            if (!is_noise(l))
-                err += "\n" + l;
-        return false;
-    }
-    has_fc = false;
-    first_line.clear();
-    std::string want = kFrameCoherenceFeature;
-    std::transform(want.begin(), want.end(), want.begin(), ::tolower);
-    for (const std::string &l : lines) {
-        if (is_noise(l))
-            continue;
-        if (first_line.empty())
-            first_line = l;
-        std::string low = l;
-        std::transform(low.begin(), low.end(), low.begin(), ::tolower);
-        if (low.find(want) != std::string::npos)
-            has_fc = true;
-    }
-    return true;
+    std::string excerpt = error_excerpt(tail);
+    if (excerpt.empty())
+        for (size_t k = tail.size() > 8 ? tail.size() - 8 : 0; k < tail.size(); k++)
+            if (!is_noise(tail[k]))
+                excerpt += tail[k] + "\n";
+    return excerpt;
 }
 
-bool parse_rendering_frame(const std::string &line, int &k, int &n)
+bool is_scene_error(const std::vector<std::string> &tail)
 {
-    // Anywhere in the line: output of POV-Ray's threads can share a line.
-    const char *p = strstr(line.c_str(), "Rendering frame ");
-    return p && sscanf(p, "Rendering frame %d of %d", &k, &n) == 2;
-}
-
-bool parse_rays(const std::string &line, double &rays)
-{
-    return sscanf(line.c_str(), "Rays: %lf", &rays) == 1;
-}
-
-bool parse_aa(const std::string &line, int &method)
-{
-    std::string t = trim(line);
-    if (!starts_with(t, "Antialiasing......"))
-        return false;
-    const char *m = strstr(t.c_str(), "(Method ");
-    method = m ? atoi(m + 8) : 0;
-    return true;
-}
-
-bool parse_rendered(const std::string &line, int &done, int &total)
-{
-    return sscanf(line.c_str(), "Rendered %d of %d pixels", &done, &total) == 2;
+    for (const std::string &l : tail)
+        if (l.find("Parse Error") != std::string::npos ||
+            l.find("Fatal error in parser") != std::string::npos ||
+            l.find("Fatal error in renderer") != std::string::npos)
+            return true;
+    return false;
 }
 
 std::string error_excerpt(const std::vector<std::string> &tail)

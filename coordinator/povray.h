@@ -9,6 +9,7 @@
 // use them, renders nothing and writes no file. See probe_scene().
 #pragma once
 
+#include <map>
 #include <string>
 #include <vector>
 
@@ -16,10 +17,8 @@
 
 namespace fc {
 
-// Frame coherence: the INI option the master appends unless --no-fc, and the text POV-Ray's
-// --version output contains when the renderer supports it.
+// Frame coherence: the INI option the master appends unless --no-fc.
 extern const char *const kFrameCoherenceOption;    // "Frame_Coherence=on"
-extern const char *const kFrameCoherenceFeature;   // "Frame coherence"
 
 struct SceneInfo {
     int width = 0, height = 0;
@@ -27,22 +26,42 @@ struct SceneInfo {
     bool animated = false;
     int initial_frame = 0, final_frame = 0, frame_step = 1;
     bool cyclic = false;
+    int first_frame = 0;            // first frame of the subset (from the output name)
     std::vector<int> frames;        // frames to render (subset, step applied); {0} for a still
     std::string output_name;        // POV-Ray's output file name for the first frame
     std::string stem;               // output_name without frame number and ".tga"
     int digits = 0;                 // frame number digits in names (0 for a still)
+    bool shellouts_permitted = false;   // povray.conf allows shell-out commands
 };
 
 // Run `renderer options... -D +FT -UA +HI<probe.inc>` in cwd (tmpdir holds the probe include,
-// it must be readable under POV-Ray's I/O restrictions, e.g. below /tmp). On success fills
-// info; on failure err holds POV-Ray's own error lines.
+// it must be readable under POV-Ray's I/O restrictions, e.g. below /tmp), with the user's
+// shell-outs replaced (the probe must not run them) and a harmless pre-scene command that
+// tells whether povray.conf allows shell-outs. On success fills info; on failure err holds
+// POV-Ray's own error lines.
 bool probe_scene(const std::string &renderer, const std::vector<std::string> &options,
                  const std::string &cwd, const std::string &tmpdir, double timeout,
                  SceneInfo &info, std::string &err);
 
-// Run `renderer --version`; true if it ran. has_fc tells whether it supports frame coherence.
-bool renderer_version(const std::string &renderer, bool &has_fc, std::string &first_line,
-                      std::string &err);
+// POV-Ray's resolved options as its Create_Ini writes them (key -> value, quotes removed):
+// runs `renderer options... +GI<ini> Frame_Channel=<a path that cannot be opened>`, which
+// writes the INI file and stops before anything runs (patch 0020 opens the channel first).
+// A renderer without the frame channel writes none and is refused here.
+typedef std::map<std::string, std::string> ResolvedOptions;
+bool probe_resolved_options(const std::string &renderer, const std::vector<std::string> &options,
+                            const std::string &cwd, const std::string &tmpdir, double timeout,
+                            ResolvedOptions &out, std::string &err);
+
+// The frames of an animation: from info.first_frame to the subset's end, as
+// AnimationProcessing computes it from the resolved options (Subset_End_Frame as a frame or a
+// fraction of the animation, Final_Frame, Cyclic_Animation), every Frame_Step. POV-Ray's
+// console may not print "Rendering frame k of n" before a short run ends, so the count is
+// not read from there.
+bool set_frames(SceneInfo &info, const ResolvedOptions &ini, std::string &err);
+
+// Run argv to completion (or timeout) in cwd, collecting its output lines and wait status.
+bool run_collect(const std::vector<std::string> &argv, const std::string &cwd, double timeout,
+                 std::vector<std::string> &lines, int &status, std::string &err);
 
 // Output file name of frame (POV-Ray's scheme: stem + frame zero-padded to digits + ".tga";
 // a still image has no number).
@@ -51,14 +70,19 @@ std::string frame_file_name(const std::string &stem, int digits, int frame);
 // Digits POV-Ray uses for frame numbers: those of the final frame (+1 when cyclic).
 int frame_digits(int final_frame, bool cyclic);
 
-// Parsers for one physical line of POV-Ray's console output; each returns true on a match.
-bool parse_rendering_frame(const std::string &line, int &k, int &n);  // "Rendering frame k of n"
-bool parse_rays(const std::string &line, double &rays);               // "Rays:   12345 ..."
-bool parse_aa(const std::string &line, int &method);                  // "Antialiasing....On (Method 2"
-bool parse_rendered(const std::string &line, int &done, int &total);  // "Rendered 10 of 20 pixels"
+// POV-Ray's shell-out options. Slaves' renderers get each of them set empty: the master runs
+// the commands, once per scene and once per assembled frame.
+extern const char *const kShelloutOptions[6];
 
 // From the tail of a failed run, the lines that explain it (from the first error line on),
 // without POV-Ray's noise (config-file warnings, statistics).
 std::string error_excerpt(const std::vector<std::string> &tail);
+
+// error_excerpt, or when no line says "error", the last lines that are not noise.
+std::string failure_excerpt(const std::vector<std::string> &tail);
+
+// Whether a failed run's output says the scene is at fault (a parse error, #error, a fatal
+// error of the parser or renderer), as opposed to the host (a crash, a missing program).
+bool is_scene_error(const std::vector<std::string> &tail);
 
 } // namespace fc

@@ -13,10 +13,7 @@ const char *tag_name(int tag)
     case FC_JOB: return "FC_JOB";
     case FC_FRAME: return "FC_FRAME";
     case FC_PROGRESS: return "FC_PROGRESS";
-    case FC_DONE: return "FC_DONE";
     case FC_FAIL: return "FC_FAIL";
-    case FC_TRUNCATE: return "FC_TRUNCATE";
-    case FC_TRUNCATED: return "FC_TRUNCATED";
     case FC_CANCEL: return "FC_CANCEL";
     case FC_PING: return "FC_PING";
     case FC_QUIT: return "FC_QUIT";
@@ -49,6 +46,20 @@ struct Packer {
         i(int(v.size()));
         for (const std::string &x : v)
             s(x);
+        return *this;
+    }
+    Packer &ints(const std::vector<int> &v)
+    {
+        i(int(v.size()));
+        if (status >= 0 && !v.empty())
+            status = pvm_pkint(const_cast<int *>(v.data()), int(v.size()), 1);
+        return *this;
+    }
+    Packer &rects(const std::vector<Rect> &v)
+    {
+        i(int(v.size()));
+        for (const Rect &x : v)
+            r(x);
         return *this;
     }
     Packer &bytes(const std::vector<uint8_t> &v)
@@ -93,6 +104,33 @@ struct Unpacker {
         }
         return *this;
     }
+    Unpacker &ints(std::vector<int> &v)
+    {
+        int n = 0;
+        i(n);
+        if (ok && (n < 0 || n > (1 << 24)))
+            ok = false;
+        if (ok) {
+            v.resize(size_t(n));
+            if (n > 0)
+                ok = pvm_upkint(v.data(), n, 1) >= 0;
+        }
+        return *this;
+    }
+    Unpacker &rects(std::vector<Rect> &v)
+    {
+        int n = 0;
+        i(n);
+        if (ok && (n < 0 || n > (1 << 24)))
+            ok = false;
+        v.clear();
+        for (int k = 0; ok && k < n; k++) {
+            Rect x;
+            r(x);
+            v.push_back(x);
+        }
+        return *this;
+    }
     Unpacker &bytes(std::vector<uint8_t> &v)
     {
         int n = 0;
@@ -119,58 +157,54 @@ int pack(const Setup &m)
 {
     return Packer()
         .s(m.renderer).s(m.cwd).strings(m.options).strings(m.extra)
-        .i(m.width).i(m.height).i(m.digits).i(m.timeout).i(m.nice)
+        .i(m.width).i(m.height).i(m.digits).i(m.last_frame).i(m.coherent).i(m.timeout).i(m.nice)
         .status;
 }
 bool unpack(Setup &m)
 {
     return Unpacker()
         .s(m.renderer).s(m.cwd).strings(m.options).strings(m.extra)
-        .i(m.width).i(m.height).i(m.digits).i(m.timeout).i(m.nice)
+        .i(m.width).i(m.height).i(m.digits).i(m.last_frame).i(m.coherent).i(m.timeout).i(m.nice)
         .ok;
 }
 
-int pack(const Job &m)
+int pack(const JobMsg &m)
 {
-    return Packer().i(m.unit).r(m.rect).i(m.first).i(m.last).i(m.step).i(m.threads).status;
+    return Packer().i(m.job).i(m.frame).ints(m.tiles).rects(m.rects).i(m.threads).status;
 }
-bool unpack(Job &m)
+bool unpack(JobMsg &m)
 {
-    return Unpacker().i(m.unit).r(m.rect).i(m.first).i(m.last).i(m.step).i(m.threads).ok;
+    bool ok = Unpacker().i(m.job).i(m.frame).ints(m.tiles).rects(m.rects).i(m.threads).ok;
+    return ok && !m.rects.empty() && m.tiles.size() == m.rects.size();
 }
 
 int pack(const FrameResult &m)
 {
     return Packer()
-        .i(m.unit).i(m.frame).r(m.rect).d(m.rays).d(m.seconds).i(m.aa_method).bytes(m.pixels)
+        .i(m.job).i(m.frame).ints(m.tiles).rects(m.rects).d(m.rays).d(m.parse_seconds)
+        .d(m.trace_seconds).i(m.fresh).s(m.encoding).bytes(m.data)
         .status;
 }
 bool unpack(FrameResult &m)
 {
     bool ok = Unpacker()
-        .i(m.unit).i(m.frame).r(m.rect).d(m.rays).d(m.seconds).i(m.aa_method).bytes(m.pixels)
+        .i(m.job).i(m.frame).ints(m.tiles).rects(m.rects).d(m.rays).d(m.parse_seconds)
+        .d(m.trace_seconds).i(m.fresh).s(m.encoding).bytes(m.data)
         .ok;
-    return ok && m.rect.width() > 0 && m.rect.height() > 0 &&
-           m.pixels.size() == size_t(m.rect.area()) * 3;
+    return ok && !m.rects.empty() && m.tiles.size() == m.rects.size();
 }
 
-int pack(const Progress &m) { return Packer().i(m.unit).i(m.frame).i(m.done).i(m.total).status; }
-bool unpack(Progress &m) { return Unpacker().i(m.unit).i(m.frame).i(m.done).i(m.total).ok; }
+int pack(const Progress &m) { return Packer().i(m.job).i(m.frame).status; }
+bool unpack(Progress &m) { return Unpacker().i(m.job).i(m.frame).ok; }
 
-int pack(const UnitDone &m)
+int pack(const Failure &m)
 {
-    return Packer().i(m.unit).i(m.status).i(m.frames).d(m.rays).d(m.seconds).status;
+    return Packer().i(m.job).i(m.frame).i(m.scene_error).i(m.status).s(m.message).status;
 }
-bool unpack(UnitDone &m)
+bool unpack(Failure &m)
 {
-    return Unpacker().i(m.unit).i(m.status).i(m.frames).d(m.rays).d(m.seconds).ok;
+    return Unpacker().i(m.job).i(m.frame).i(m.scene_error).i(m.status).s(m.message).ok;
 }
-
-int pack(const Failure &m) { return Packer().i(m.unit).i(m.frame).i(m.status).s(m.message).status; }
-bool unpack(Failure &m) { return Unpacker().i(m.unit).i(m.frame).i(m.status).s(m.message).ok; }
-
-int pack(const Truncate &m) { return Packer().i(m.unit).i(m.last).status; }
-bool unpack(Truncate &m) { return Unpacker().i(m.unit).i(m.last).ok; }
 
 int pack_int(int v) { return Packer().i(v).status; }
 bool unpack_int(int &v) { return Unpacker().i(v).ok; }

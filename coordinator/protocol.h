@@ -1,34 +1,10 @@
-// protocol.h - the fc-master / fc-slave PVM message protocol: every tag, its payload, its reply.
+// protocol.h - the fc-master / fc-slave PVM messages: their tags and payloads, and one
+// pack/unpack pair per message (protocol.cpp).
 //
-// The master has one receive point and switches on the tag; a slave holds one work unit at a
-// time and gets its next one in reply to FC_DONE (self-scheduling). A work unit is one POV-Ray
-// process: one rectangle of the image (a tile, or the whole frame) over a consecutive range of
-// frames, so frame coherence can carry state from frame to frame inside it.
-//
-//  Tag            Direction   Payload                                         Reply
-//  -------------  ----------  ----------------------------------------------  ---------------------
-//  FC_HELLO       slave->m    Hello: host, cpus, pid                           FC_SETUP
-//  FC_SETUP       m->slave    Setup: renderer, cwd, POV-Ray options, W, H,     none (slave idles
-//                             frame digits, timeout, nice                      until FC_JOB)
-//  FC_JOB         m->slave    Job: unit, rectangle, first/last/step frame,     FC_FRAME per frame,
-//                             threads                                          then FC_DONE or FC_FAIL
-//  FC_FRAME       slave->m    FrameResult: unit, frame, rectangle, rays,       none
-//                             seconds, AA method, 8-bit RGB pixels (top row
-//                             first, left to right)
-//  FC_PROGRESS    slave->m    Progress: unit, frame, pixels done/total         none (heartbeat, every
-//                                                                             ~2 s while rendering)
-//  FC_DONE        slave->m    UnitDone: unit, status, frames sent, rays, secs  FC_JOB, or none (idle)
-//  FC_FAIL        slave->m    Failure: unit, frame, wait status, message       FC_QUIT (render aborts)
-//  FC_TRUNCATE    m->slave    Truncate: unit, requested last frame             FC_TRUNCATED
-//  FC_TRUNCATED   slave->m    Truncate: unit, accepted last frame (>= the      none; the master gives
-//                             requested one; -1 = unit no longer running)      the tail to an idle slave
-//  FC_CANCEL      m->slave    int unit (duplicate finished elsewhere)          FC_DONE, status cancelled
-//  FC_PING        m->slave    empty (keeps an idle slave's wait alive)         none
-//  FC_QUIT        m->slave    empty                                           none; slave exits
-//  FC_TASKEXIT    pvmd->m     int tid          (pvm_notify PvmTaskExit)        -
-//  FC_HOSTDEL     pvmd->m     int pvmd tid     (pvm_notify PvmHostDelete)      -
-//  FC_HOSTADD     pvmd->m     int n, int tids[n] (pvm_notify PvmHostAdd)       -
-//  FC_MASTEREXIT  pvmd->slave int tid          (pvm_notify PvmTaskExit)        - (slave exits)
+// The table in coordinator/README.md ("Protocol") is the one description of the messages:
+// direction, payload and reply of every tag. In short: a job is one frame and a set of
+// tiles, rendered by a slave's renderer with one parse; a slave holds at most two jobs and
+// gets its next one in reply to a result (self-scheduling).
 //
 // Frames are POV-Ray frame numbers; rectangles are 0-based, half-open pixel coordinates
 // [x0,x1) x [y0,y1) in the full image. Data is packed with PvmDataDefault (XDR), so hosts of
@@ -47,10 +23,7 @@ enum Tag {
     FC_JOB = 103,
     FC_FRAME = 104,
     FC_PROGRESS = 105,
-    FC_DONE = 106,
     FC_FAIL = 107,
-    FC_TRUNCATE = 108,
-    FC_TRUNCATED = 109,
     FC_CANCEL = 110,
     FC_PING = 111,
     FC_QUIT = 112,
@@ -86,54 +59,44 @@ struct Setup {
     std::vector<std::string> extra;     // options the master adds (frame coherence)
     int width = 0, height = 0;
     int digits = 0;                     // digits of frame numbers in output names; 0 = still
+    int last_frame = 0;                 // last frame of the animation subset (+EF)
+    int coherent = 0;                   // frame coherence is on (renderer.h: tile changes)
     int timeout = 0;                    // master's --timeout: heartbeat every min(2, timeout/4) s,
                                         // idle slave gives up after max(300, 10 x timeout) s
     int nice = 0;                       // nice increment for the renderer
 };
 
-struct Job {
-    int unit = 0;
-    Rect rect;
-    int first = 0, last = 0, step = 1;  // frames first, first+step, ... <= last
+struct JobMsg {
+    int job = 0;
+    int frame = 0;
+    std::vector<int> tiles;             // tile numbers, echoed in the result
+    std::vector<Rect> rects;            // their rectangles
     int threads = 1;                    // POV-Ray work threads (+WT)
 };
 
 struct FrameResult {
-    int unit = 0;
+    int job = 0;
     int frame = 0;
-    Rect rect;
-    double rays = 0;                    // from POV-Ray's statistics
-    double seconds = 0;                 // parse + trace wall time of this frame
-    int aa_method = 0;                  // 0 = no antialiasing, else POV-Ray's +AM
-    std::vector<uint8_t> pixels;        // rect.width() * rect.height() * 3
+    std::vector<int> tiles;
+    std::vector<Rect> rects;
+    double rays = 0;                    // from POV-Ray's statistics (-1: none)
+    double parse_seconds = 0, trace_seconds = 0;
+    int fresh = 0;                      // the renderer's first frame (fc traced everything)
+    std::string encoding;               // "rgb8": 3 bytes a pixel; "rgbf": see dither.h
+    std::vector<uint8_t> data;          // the rectangles in order, rows top first
 };
 
 struct Progress {
-    int unit = 0;
+    int job = 0;
     int frame = 0;
-    int done = 0, total = 0;            // pixels of the current frame
-};
-
-enum UnitStatus { UNIT_FINISHED = 0, UNIT_TRUNCATED = 1, UNIT_CANCELLED = 2 };
-
-struct UnitDone {
-    int unit = 0;
-    int status = UNIT_FINISHED;
-    int frames = 0;                     // FC_FRAME messages sent for this unit
-    double rays = 0;
-    double seconds = 0;                 // wall time of the POV-Ray process
 };
 
 struct Failure {
-    int unit = 0;
+    int job = 0;
     int frame = 0;
+    int scene_error = 0;                // 1: POV-Ray rejected the scene (fatal)
     int status = 0;                     // wait status of POV-Ray, or -1 for a slave-side error
     std::string message;                // POV-Ray's error lines (file, line, message)
-};
-
-struct Truncate {
-    int unit = 0;
-    int last = 0;
 };
 
 // Each message has one pack function (initsend + pack, returns the pvm status of the last
@@ -143,18 +106,14 @@ int pack(const Hello &m);
 bool unpack(Hello &m);
 int pack(const Setup &m);
 bool unpack(Setup &m);
-int pack(const Job &m);
-bool unpack(Job &m);
+int pack(const JobMsg &m);
+bool unpack(JobMsg &m);
 int pack(const FrameResult &m);
 bool unpack(FrameResult &m);
 int pack(const Progress &m);
 bool unpack(Progress &m);
-int pack(const UnitDone &m);
-bool unpack(UnitDone &m);
 int pack(const Failure &m);
 bool unpack(Failure &m);
-int pack(const Truncate &m);
-bool unpack(Truncate &m);
 int pack_int(int v);        // FC_CANCEL
 bool unpack_int(int &v);
 int pack_empty();           // FC_PING, FC_QUIT

@@ -3,6 +3,7 @@
 
 #include <unistd.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 
@@ -69,12 +70,13 @@ std::string Report::summary(double elapsed, int rendered, int resumed, const std
     if (resumed)
         s += strf(", %d already present", resumed);
     s += strf(" in %s, %s division\n", duration(elapsed).c_str(), division.c_str());
-    s += strf("  %-20s %6s %6s %7s %7s %14s %10s\n", "host", "slaves", "units", "frames",
+    s += strf("  %-20s %6s %6s %7s %7s %14s %10s\n", "host", "slaves", "jobs", "frames",
               "tiles", "rays", "busy");
     for (auto &kv : hosts) {
         const HostStat &h = kv.second;
-        s += strf("  %-20s %6d %6d %7d %7d %14.0f %10s\n", h.name.c_str(), h.slaves, h.units,
-                  h.frames, h.tiles, h.rays, duration(h.busy).c_str());
+        s += strf("  %-20s %6d %6d %7d %7d %14.0f %10s%s\n", h.name.c_str(), h.slaves, h.jobs,
+                  h.frames, h.tiles, h.rays, duration(h.busy).c_str(),
+                  h.excluded ? "  (left out after failures)" : "");
     }
     return s;
 }
@@ -100,60 +102,56 @@ std::string Report::json_string(const std::string &in)
 }
 
 bool Report::write_json(const std::string &path, const std::string &json_head,
-                        const std::vector<FrameStat> &frames, const std::map<int, UnitStat> &units,
+                        const std::vector<FrameStat> &frames, const std::map<int, JobStat> &jobs,
                         const std::map<std::string, HostStat> &hosts, std::string &err) const
 {
     std::string j = "{\n" + json_head;
     j += "  \"frames\": [\n";
     for (size_t i = 0; i < frames.size(); i++) {
         const FrameStat &f = frames[i];
-        double rays = 0, secs = 0;
         std::vector<std::string> host_list;
-        for (const CellStat &c : f.cells) {
-            rays += c.rays;
-            secs += c.seconds;
-            bool seen = false;
-            for (const std::string &h : host_list)
-                seen = seen || h == c.host;
-            if (!seen)
+        for (const CellStat &c : f.cells)
+            if (std::find(host_list.begin(), host_list.end(), c.host) == host_list.end())
                 host_list.push_back(c.host);
-        }
         std::string hosts_json;
         for (size_t k = 0; k < host_list.size(); k++)
             hosts_json += (k ? ", " : "") + json_string(host_list[k]);
         j += strf("    {\"frame\": %d, \"file\": %s, \"resumed\": %s, \"host\": %s, \"hosts\": [%s], "
-                 "\"rays\": %.0f, \"time\": %.3f, \"finished_at\": %.3f, \"tiles\": [",
+                 "\"rays\": %.0f, \"time\": %.3f, \"parses\": %d, \"finished_at\": %.3f, \"tiles\": [",
                  f.frame, json_string(f.file).c_str(), f.resumed ? "true" : "false",
                  host_list.empty() ? "null" : json_string(host_list[0]).c_str(),
-                 hosts_json.c_str(), rays, secs, f.finished_at);
+                 hosts_json.c_str(), f.rays, f.seconds, f.parses, f.finished_at);
         for (size_t k = 0; k < f.cells.size(); k++) {
             const CellStat &c = f.cells[k];
-            j += strf("%s{\"tile\": %d, \"unit\": %d, \"host\": %s, \"rays\": %.0f, \"time\": %.3f}",
-                     k ? ", " : "", c.tile, c.unit, json_string(c.host).c_str(), c.rays, c.seconds);
+            j += strf("%s{\"tile\": %d, \"job\": %d, \"host\": %s}", k ? ", " : "", c.tile,
+                      c.job, json_string(c.host).c_str());
         }
         j += strf("]}%s\n", i + 1 < frames.size() ? "," : "");
     }
-    j += "  ],\n  \"units\": [\n";
+    j += "  ],\n  \"jobs\": [\n";
     size_t n = 0;
-    for (auto &kv : units) {
-        const UnitStat &u = kv.second;
-        j += strf("    {\"id\": %d, \"tile\": %d, \"rect\": [%d, %d, %d, %d], \"first\": %d, "
-                 "\"last\": %d, \"host\": %s, \"tid\": \"t%x\", \"duplicate_of\": %s, "
-                 "\"status\": %s, \"frames\": %d, \"rays\": %.0f, \"time\": %.3f}%s\n",
-                 u.id, u.tile, u.rect.x0, u.rect.y0, u.rect.x1, u.rect.y1, u.first, u.last,
-                 json_string(u.host).c_str(), unsigned(u.tid),
+    for (auto &kv : jobs) {
+        const JobStat &u = kv.second;
+        std::string tiles;
+        for (size_t k = 0; k < u.tiles.size(); k++)
+            tiles += strf("%s%d", k ? ", " : "", u.tiles[k]);
+        j += strf("    {\"id\": %d, \"frame\": %d, \"tiles\": [%s], \"host\": %s, \"tid\": \"t%x\", "
+                 "\"duplicate_of\": %s, \"status\": %s, \"rays\": %.0f, \"parse\": %.4f, "
+                 "\"trace\": %.4f}%s\n",
+                 u.id, u.frame, tiles.c_str(), json_string(u.host).c_str(), unsigned(u.tid),
                  u.dup_of >= 0 ? strf("%d", u.dup_of).c_str() : "null",
-                 json_string(u.status).c_str(), u.frames, u.rays, u.seconds,
-                 ++n < units.size() ? "," : "");
+                 json_string(u.status).c_str(), u.rays, u.parse, u.trace,
+                 ++n < jobs.size() ? "," : "");
     }
     j += "  ],\n  \"hosts\": [\n";
     n = 0;
     for (auto &kv : hosts) {
         const HostStat &h = kv.second;
-        j += strf("    {\"name\": %s, \"slaves\": %d, \"units\": %d, \"frames\": %d, "
-                 "\"tiles\": %d, \"rays\": %.0f, \"busy\": %.3f}%s\n",
-                 json_string(h.name).c_str(), h.slaves, h.units, h.frames, h.tiles, h.rays, h.busy,
-                 ++n < hosts.size() ? "," : "");
+        j += strf("    {\"name\": %s, \"slaves\": %d, \"jobs\": %d, \"frames\": %d, "
+                 "\"tiles\": %d, \"failures\": %d, \"excluded\": %s, \"rays\": %.0f, "
+                 "\"busy\": %.3f}%s\n",
+                 json_string(h.name).c_str(), h.slaves, h.jobs, h.frames, h.tiles, h.failures,
+                 h.excluded ? "true" : "false", h.rays, h.busy, ++n < hosts.size() ? "," : "");
     }
     j += "  ]\n}\n";
     std::string tmp = path + ".tmp";

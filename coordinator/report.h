@@ -1,5 +1,5 @@
 // report.h - what fc-master tells the user: progress while rendering, a per-host summary at
-// the end, and the --stats JSON file (per frame and per work unit: host, rays, time).
+// the end, and the --stats JSON file (per frame and per job: host, rays, time).
 #pragma once
 
 #include <map>
@@ -12,9 +12,8 @@ namespace fc {
 
 struct CellStat {               // one tile of one frame, as it was accepted
     int tile = 0;
-    int unit = 0;
+    int job = 0;
     std::string host;
-    double rays = 0, seconds = 0;
 };
 
 struct FrameStat {
@@ -22,27 +21,29 @@ struct FrameStat {
     std::string file;
     bool resumed = false;       // already in the output directory, not rendered
     double finished_at = -1;    // seconds after start when written
+    double rays = 0, seconds = 0;   // of the jobs whose tiles were accepted
+    int parses = 0;             // jobs (one parse each) that contributed tiles
     std::vector<CellStat> cells;
 };
 
-struct UnitStat {
-    int id = 0, tile = 0;
-    Rect rect;
-    int first = 0, last = 0;    // frames (last as finally rendered)
+struct JobStat {
+    int id = 0, frame = 0;
+    std::vector<int> tiles;
     std::string host;
     int tid = 0;
     int dup_of = -1;
-    std::string status = "running";
-    int frames = 0;             // FC_FRAME messages received
-    double rays = 0, seconds = 0;
+    std::string status = "running";     // done, cancelled, lost, failed, stopped
+    double rays = 0, parse = 0, trace = 0;
     double started = 0;
 };
 
 struct HostStat {
     std::string name;
-    int slaves = 0, units = 0;
-    int frames = 0;             // distinct frames it rendered pixels of (FC_FRAME count until the end)
-    int tiles = 0;              // FC_FRAME results (frame x tile), duplicates included
+    int slaves = 0, jobs = 0;
+    int frames = 0;             // distinct frames it rendered pixels of
+    int tiles = 0;              // tiles of frames it delivered, duplicates included
+    int failures = 0;
+    bool excluded = false;
     double rays = 0, busy = 0;
 };
 
@@ -63,7 +64,7 @@ public:
                         const std::map<std::string, HostStat> &hosts) const;
 
     bool write_json(const std::string &path, const std::string &json_head,
-                    const std::vector<FrameStat> &frames, const std::map<int, UnitStat> &units,
+                    const std::vector<FrameStat> &frames, const std::map<int, JobStat> &jobs,
                     const std::map<std::string, HostStat> &hosts, std::string &err) const;
 
     static std::string json_string(const std::string &s);

@@ -1,10 +1,22 @@
-// schedule.cpp - work-unit bookkeeping: plan, hand out, split, duplicate, re-queue.
+// schedule.cpp - per-frame jobs out of frame ranges: divide, balance, split, duplicate, retry.
 #include "schedule.h"
 
 #include <algorithm>
 #include <cassert>
+#include <climits>
+#include <cmath>
 
 namespace fc {
+
+namespace {
+
+// Move tiles while a slave's share exceeds its speed's by this much: by little when moves are
+// free (no fc), by more when a move costs its new slave a fresh renderer.
+const double kImbalanceCheap = 1.05;
+const double kImbalance = 1.2;
+const double kSpeedWeight = 0.3;    // weight of the newest measurement in a slave's speed
+
+} // namespace
 
 const char *division_name(Division d)
 {
@@ -34,334 +46,599 @@ std::vector<Rect> make_tiles(const Rect &area, int size)
     return tiles;
 }
 
-Schedule::Schedule(const std::vector<Rect> &tiles, int nframes)
-    : tiles_(tiles), nframes_(nframes),
+Schedule::Schedule(const std::vector<Rect> &tiles, int nframes, Division division)
+    : tiles_(tiles), nframes_(nframes), division_(division),
       done_(tiles.size() * size_t(nframes), 0), frame_cells_(size_t(nframes), 0)
 {
 }
 
-void Schedule::mark_done(int tile, int index)
+bool Schedule::done(int index, int tile) const
 {
-    char &d = done_[size_t(tile) * size_t(nframes_) + size_t(index)];
+    return done_[size_t(index) * tiles_.size() + size_t(tile)] != 0;
+}
+
+void Schedule::mark_done(int index, int tile)
+{
+    char &d = done_[size_t(index) * tiles_.size() + size_t(tile)];
     if (d)
         return;
     d = 1;
+    cells_done_++;
     if (++frame_cells_[size_t(index)] == tiles())
         frames_done_++;
 }
 
-bool Schedule::done(int tile, int index) const
+void Schedule::mark_frame_done(int index)
 {
-    return done_[size_t(tile) * size_t(nframes_) + size_t(index)] != 0;
+    for (int t = 0; t < tiles(); t++)
+        mark_done(index, t);
 }
 
-bool Schedule::all_done(int tile, int lo, int hi) const
+std::vector<int> Schedule::missing(int index, const std::vector<int> &tiles) const
 {
-    for (int i = lo; i <= hi; i++)
-        if (!done(tile, i))
-            return false;
+    std::vector<int> m;
+    for (int t : tiles)
+        if (!done(index, t))
+            m.push_back(t);
+    return m;
+}
+
+void Schedule::plan(int parts)
+{
+    std::vector<int> todo;
+    for (int i = 0; i < nframes_; i++)
+        if (!frame_done(i))
+            todo.push_back(i);
+    if (todo.empty())
+        return;
+    parts = division_ == Division::Frame ? 1 : std::max(1, std::min(parts, int(todo.size())));
+    // Ranges of about equally many missing frames; a range may span finished frames (the
+    // renderer skips them without parsing).
+    for (int p = 0; p < parts; p++) {
+        size_t a = todo.size() * size_t(p) / size_t(parts);
+        size_t b = todo.size() * size_t(p + 1) / size_t(parts);
+        if (a == b)
+            continue;
+        Range r;
+        r.lo = r.frontier = todo[a];
+        r.hi = todo[b - 1];
+        ranges_.push_back(r);
+    }
+}
+
+void Schedule::add_slave(int slave, int host)
+{
+    SlaveState &s = slaves_[slave];
+    s.host = host;
+}
+
+int Schedule::add_job(int slave, int index, const std::vector<int> &tiles, int range, double t)
+{
+    Job j;
+    j.id = next_id_++;
+    j.index = index;
+    j.tiles = tiles;
+    std::sort(j.tiles.begin(), j.tiles.end());
+    j.slave = slave;
+    j.range = range;
+    j.started = t;
+    // A slave renders its jobs in the order it got them: the first is being rendered now.
+    if (live_jobs(slave) == 0)
+        j.rendering = t;
+    jobs_[j.id] = j;
+    return j.id;
+}
+
+void Schedule::orphan(int index, const std::vector<int> &tiles, int failures, int avoid_host)
+{
+    std::vector<int> m = missing(index, tiles);
+    if (m.empty())
+        return;
+    Orphan o;
+    o.index = index;
+    o.tiles = m;
+    o.failures = failures;
+    if (avoid_host != 0)
+        o.avoid_hosts.insert(avoid_host);
+    // Oldest frame first: it holds up the frames after it.
+    auto pos = std::find_if(orphans_.begin(), orphans_.end(),
+                            [&](const Orphan &x) { return x.index > index; });
+    orphans_.insert(pos, o);
+}
+
+void Schedule::leave_range(int slave)
+{
+    SlaveState &s = slaves_[slave];
+    if (s.range < 0)
+        return;
+    Range &r = ranges_[size_t(s.range)];
+    r.members.erase(std::remove(r.members.begin(), r.members.end(), slave), r.members.end());
+    // Tiles set aside for it in frames it has not taken yet go to whoever comes next.
+    for (auto &kv : r.reserved) {
+        auto it = kv.second.find(slave);
+        if (it != kv.second.end()) {
+            orphan(kv.first, it->second, 0, 0);
+            kv.second.erase(it);
+        }
+    }
+    for (auto &kv : r.owner)
+        if (kv.second == slave)
+            kv.second = 0;
+    s.range = -1;
+}
+
+std::vector<int> Schedule::remove_slave(int slave)
+{
+    std::vector<int> lost;
+    auto it = slaves_.find(slave);
+    if (it == slaves_.end())
+        return lost;
+    leave_range(slave);
+    for (auto &kv : jobs_) {
+        Job &j = kv.second;
+        if (!j.live || j.slave != slave)
+            continue;
+        j.live = false;
+        lost.push_back(j.id);
+        if (Job *o = j.dup_of >= 0 && jobs_.count(j.dup_of) ? &jobs_[j.dup_of] : nullptr)
+            o->has_dup = false;
+        // A duplicate still running covers these cells; otherwise they are orphans.
+        bool covered = false;
+        for (auto &kv2 : jobs_) {
+            const Job &d = kv2.second;
+            if (d.live && d.index == j.index && (d.dup_of == j.id || j.dup_of == d.id))
+                covered = true;
+        }
+        if (!covered)
+            orphan(j.index, j.tiles, j.failures, 0);
+    }
+    slaves_.erase(it);
+    speed_.erase(slave);
+    prune();
+    return lost;
+}
+
+int Schedule::oldest_unfinished(Range &range) const
+{
+    // Frames only ever get done, so the scan resumes where it stopped: O(1) amortized.
+    range.oldest = std::max(range.oldest, range.lo);
+    while (range.oldest <= range.hi && frame_done(range.oldest))
+        range.oldest++;
+    return range.oldest;
+}
+
+long Schedule::range_work(const Range &range) const
+{
+    if (range.frontier > range.hi)
+        return 0;
+    long area = 0;
+    for (const Rect &t : tiles_)
+        area += t.area();
+    return long(range.hi - range.frontier + 1) * area;
+}
+
+// Divide frame `index` of range r among its members: each keeps the tiles it had, new tiles
+// go to the least loaded, and tiles move from the most to the least loaded member (by speed)
+// only while the imbalance exceeds kImbalance.
+void Schedule::divide(int ri, int index)
+{
+    Range &r = ranges_[size_t(ri)];
+    const std::vector<int> &m = r.members;
+    if (m.empty())
+        return;
+    std::vector<int> todo;
+    for (int t = 0; t < tiles(); t++)
+        if (!done(index, t))
+            todo.push_back(t);
+    if (todo.empty())
+        return;
+    // A slave not measured yet counts as fast as the average measured one.
+    double measured = 0;
+    int nmeasured = 0;
+    for (int s : m) {
+        auto it = speed_.find(s);
+        if (it != speed_.end() && it->second > 0) {
+            measured += it->second;
+            nmeasured++;
+        }
+    }
+    double typical = nmeasured > 0 ? measured / nmeasured : 1.0;
+    double total_speed = 0;
+    std::map<int, double> speed;
+    for (int s : m) {
+        auto it = speed_.find(s);
+        speed[s] = it != speed_.end() && it->second > 0 ? it->second : typical;
+        total_speed += speed[s];
+    }
+    double area = 0;
+    for (int t : todo)
+        area += tiles_[size_t(t)].area();
+    std::map<int, double> load, target;
+    std::map<int, std::vector<int>> share;
+    for (int s : m) {
+        load[s] = 0;
+        target[s] = area * speed[s] / total_speed;
+    }
+    bool first_division = true;
+    for (int t : todo) {
+        auto o = r.owner.find(t);
+        if (o != r.owner.end() && load.count(o->second))
+            first_division = false;
+    }
+    if (first_division) {
+        // Tiles dealt in raster order to the member furthest below its share (by speed):
+        // every slave gets tiles all over the frame, so a region that is expensive to render
+        // (frame coherence re-traces only what moved) is shared instead of holding one back.
+        for (int t : todo) {
+            int best = m[0];
+            for (int s : m)
+                if (load[s] / target[s] < load[best] / target[best])
+                    best = s;
+            share[best].push_back(t);
+            load[best] += tiles_[size_t(t)].area();
+        }
+    } else {
+        std::vector<int> unowned;
+        for (int t : todo) {
+            auto o = r.owner.find(t);
+            if (o != r.owner.end() && load.count(o->second)) {
+                share[o->second].push_back(t);
+                load[o->second] += tiles_[size_t(t)].area();
+            } else {
+                unowned.push_back(t);
+            }
+        }
+        for (int t : unowned) {
+            int best = m[0];
+            for (int s : m)
+                if (load[s] / target[s] < load[best] / target[best])
+                    best = s;
+            share[best].push_back(t);
+            load[best] += tiles_[size_t(t)].area();
+        }
+        // Move tiles from the most to the least loaded member while it pays.
+        bool moved = false;
+        bool may_move = cheap_moves_ || (r.lagging && index - r.last_move >= kMoveGap);
+        for (int moves = 0; may_move && moves < tiles(); moves++) {
+            int over = m[0], under = m[0];
+            for (int s : m) {
+                if (load[s] / target[s] > load[over] / target[over]) over = s;
+                if (load[s] / target[s] < load[under] / target[under]) under = s;
+            }
+            double limit = cheap_moves_ ? kImbalanceCheap : kImbalance;
+            if (over == under || share[over].size() <= 1 || load[over] / target[over] <= limit)
+                break;
+            // The tile of `over` nearest to `under`'s tiles (raster distance) keeps shares compact.
+            int pick = -1;
+            long best_d = LONG_MAX;
+            for (int t : share[over]) {
+                long d = LONG_MAX;
+                for (int u : share[under])
+                    d = std::min(d, long(std::abs(u - t)));
+                if (share[under].empty())
+                    d = 0;
+                if (d < best_d) {
+                    best_d = d;
+                    pick = t;
+                }
+            }
+            double a = tiles_[size_t(pick)].area();
+            // Stop when moving would only swap the roles of the two.
+            if ((load[under] + a) / target[under] >= load[over] / target[over])
+                break;
+            share[over].erase(std::find(share[over].begin(), share[over].end(), pick));
+            share[under].push_back(pick);
+            load[over] -= a;
+            load[under] += a;
+            moved = true;
+        }
+        if (moved)
+            r.last_move = index;
+    }
+    r.lagging = false;
+    for (auto &kv : share) {
+        if (kv.second.empty())
+            continue;
+        std::sort(kv.second.begin(), kv.second.end());
+        r.reserved[index][kv.first] = kv.second;
+        for (int t : kv.second)
+            r.owner[t] = kv.first;
+    }
+}
+
+const Job *Schedule::take_orphan(int slave, double t)
+{
+    int host = slaves_[slave].host;
+    bool other_host = false;
+    for (auto &kv : slaves_)
+        other_host = other_host || kv.second.host != host;
+    for (auto it = orphans_.begin(); it != orphans_.end(); ++it) {
+        std::vector<int> m = missing(it->index, it->tiles);
+        if (m.empty()) {
+            it = orphans_.erase(it);
+            if (it == orphans_.end())
+                break;
+            --it;
+            continue;
+        }
+        // A failed piece of work goes to another host when there is one.
+        if (other_host && it->avoid_hosts.count(host))
+            continue;
+        int id = add_job(slave, it->index, m, -1, t);
+        jobs_[id].failures = it->failures;
+        orphans_.erase(it);
+        return &jobs_[id];
+    }
+    return nullptr;
+}
+
+const Job *Schedule::take_from_range(int slave, double t)
+{
+    SlaveState &s = slaves_[slave];
+    while (s.range >= 0) {
+        Range &r = ranges_[size_t(s.range)];
+        if (s.cursor > r.hi) {
+            leave_range(slave);
+            return nullptr;
+        }
+        if (s.cursor >= r.frontier) {
+            if (r.frontier - oldest_unfinished(r) >= kWindow) {
+                r.lagging = r.members.size() > 1;
+                return nullptr;     // far enough ahead: wait for the others
+            }
+            divide(s.range, r.frontier);
+            r.frontier++;
+            continue;
+        }
+        int index = s.cursor++;
+        auto res = r.reserved.find(index);
+        if (res == r.reserved.end())
+            continue;
+        auto mine = res->second.find(slave);
+        if (mine == res->second.end())
+            continue;
+        std::vector<int> m = missing(index, mine->second);
+        res->second.erase(mine);
+        if (res->second.empty())
+            r.reserved.erase(res);
+        if (m.empty())
+            continue;
+        int id = add_job(slave, index, m, s.range, t);
+        return &jobs_[id];
+    }
+    return nullptr;
+}
+
+// Give a slave without a range one: an abandoned range first, then (frame division) the
+// range with the most work per member to join, else the later half of the range with the
+// most work per member.
+bool Schedule::find_range(int slave)
+{
+    SlaveState &s = slaves_[slave];
+    int best = -1;
+    double best_work = 0;
+    for (size_t i = 0; i < ranges_.size(); i++) {
+        const Range &r = ranges_[i];
+        long work = range_work(r);
+        if (work <= 0)
+            continue;
+        double per = r.members.empty() ? 1e300 : double(work) / double(r.members.size());
+        if (per > best_work) {
+            best_work = per;
+            best = int(i);
+        }
+    }
+    if (best < 0)
+        return false;
+    Range &r = ranges_[size_t(best)];
+    // Frame division shares a range among as many slaves as it has tiles; more split it.
+    if (r.members.empty() ||
+        (division_ == Division::Frame && int(r.members.size()) < tiles())) {
+        // A newcomer to a range whose tiles have owners gets its share by rebalancing, at
+        // the next division.
+        if (!r.owner.empty()) {
+            r.lagging = true;
+            r.last_move = -1000;
+        }
+        r.members.push_back(slave);
+        s.range = best;
+        s.cursor = r.frontier;
+        return true;
+    }
+    int left = r.hi - r.frontier + 1;
+    if (left < 2)
+        return false;
+    Range tail;
+    tail.lo = tail.frontier = r.frontier + left / 2;
+    tail.hi = r.hi;
+    r.hi = tail.lo - 1;
+    tail.members.push_back(slave);
+    ranges_.push_back(tail);
+    s.range = int(ranges_.size()) - 1;
+    s.cursor = tail.lo;
     return true;
 }
 
-int Schedule::add_unit(int tile, int lo, int hi, bool front)
+const Job *Schedule::duplicate(int slave, double t)
 {
-    Unit u;
-    u.id = next_id_++;
-    u.tile = tile;
-    u.lo = lo;
-    u.hi = hi;
-    u.next = lo;
-    units_[u.id] = u;
-    if (front)
-        queue_.push_front(u.id);
-    else
-        queue_.push_back(u.id);
-    return u.id;
+    // Only a job a slave is rendering (its oldest) counts, and only once it has taken clearly
+    // longer than jobs usually take: a copy costs its new slave a restart.
+    Job *oldest = nullptr;
+    for (auto &kv : jobs_) {
+        Job &j = kv.second;
+        if (!j.live || j.slave == slave || j.rendering < 0 || j.dup_of >= 0 || j.has_dup ||
+            missing(j.index, j.tiles).empty())
+            continue;
+        if (t - j.rendering < std::max(kStragglerSeconds, 2 * job_seconds_))
+            continue;
+        if (!oldest || j.rendering < oldest->rendering)
+            oldest = &j;
+    }
+    if (!oldest)
+        return nullptr;
+    int oid = oldest->id;
+    int id = add_job(slave, oldest->index, missing(oldest->index, oldest->tiles), -1, t);
+    jobs_[id].dup_of = oid;
+    jobs_[oid].has_dup = true;
+    return &jobs_[id];
 }
 
-void Schedule::plan(Division division, int parts)
+const Job *Schedule::next_job(int slave, double t, bool allow_duplicates)
 {
-    parts = std::max(1, parts);
-    // Runs of frame indices with some cell missing (all tiles agree after a resume, which
-    // works on whole frames; per-tile runs are cut below).
-    std::vector<std::pair<int, int>> runs;
-    for (int i = 0; i < nframes_; i++) {
-        if (frame_done(i))
+    if (!slaves_.count(slave) || finished())
+        return nullptr;
+    // Every slave belongs to a range before any frame is divided, so a division counts all.
+    for (auto &kv : slaves_)
+        if (kv.second.range < 0)
+            find_range(kv.first);
+    if (const Job *j = take_orphan(slave, t))
+        return j;
+    for (int attempt = 0; attempt < 3; attempt++) {
+        if (slaves_[slave].range < 0 && !find_range(slave))
+            break;
+        if (const Job *j = take_from_range(slave, t))
+            return j;
+        if (slaves_[slave].range >= 0)
+            return nullptr;     // waiting for the others in its range
+    }
+    if (!allow_duplicates)
+        return nullptr;
+    // Duplicate only at the end, when no range has frames left to divide.
+    for (const Range &r : ranges_)
+        if (range_work(r) > 0)
+            return nullptr;
+    if (!orphans_.empty())
+        return nullptr;
+    return duplicate(slave, t);
+}
+
+// The slave's oldest live job is the one it renders now.
+void Schedule::next_rendering(int slave, double t)
+{
+    Job *first = nullptr;
+    for (auto &kv : jobs_)
+        if (kv.second.live && kv.second.slave == slave && (!first || kv.first < first->id))
+            first = &kv.second;
+    if (first && first->rendering < 0)
+        first->rendering = t;
+}
+
+void Schedule::job_done(int id, int index, const std::vector<int> &tiles, std::vector<int> &fresh,
+                        std::vector<Job> &cancel, double t)
+{
+    fresh.clear();
+    if (index < 0 || index >= nframes_)
+        return;
+    for (int t : tiles)
+        if (t >= 0 && t < this->tiles() && !done(index, t)) {
+            mark_done(index, t);
+            fresh.push_back(t);
+        }
+    auto it = jobs_.find(id);
+    int slave = 0;
+    if (it != jobs_.end()) {
+        it->second.live = false;
+        slave = it->second.slave;
+        if (it->second.dup_of >= 0 && jobs_.count(it->second.dup_of))
+            jobs_[it->second.dup_of].has_dup = false;
+    }
+    // Copies of the same cells have nothing left to add.
+    for (auto &kv : jobs_) {
+        Job &o = kv.second;
+        if (!o.live || o.index != index || o.id == id)
             continue;
-        if (!runs.empty() && runs.back().second == i - 1)
-            runs.back().second = i;
-        else
-            runs.push_back({i, i});
-    }
-    int missing = 0;
-    for (auto &r : runs)
-        missing += r.second - r.first + 1;
-
-    // Cut the runs into ranges of about missing/parts frames (a range never spans a gap).
-    std::vector<std::pair<int, int>> ranges;
-    if (division == Division::Frame) {
-        ranges = runs;
-    } else {
-        int target = std::max(1, (missing + parts - 1) / parts);
-        for (auto &r : runs)
-            for (int lo = r.first; lo <= r.second; lo += target)
-                ranges.push_back({lo, std::min(r.second, lo + target - 1)});
-    }
-
-    // Hybrid and frame: range-major, so early frames complete (and leave memory) first.
-    for (auto &r : ranges) {
-        for (int t = 0; t < tiles(); t++) {
-            // Skip cells already done inside this tile (never the case after a whole-frame
-            // resume, but keeps the invariant exact).
-            int lo = r.first;
-            while (lo <= r.second) {
-                while (lo <= r.second && done(t, lo))
-                    lo++;
-                int hi = lo;
-                while (hi + 1 <= r.second && !done(t, hi + 1))
-                    hi++;
-                if (lo <= r.second)
-                    add_unit(t, lo, hi, false);
-                lo = hi + 1;
-            }
+        if (missing(o.index, o.tiles).empty()) {
+            o.live = false;
+            cancel.push_back(o);
         }
     }
+    if (slave != 0)
+        next_rendering(slave, t);
+    for (const Job &c : cancel)
+        next_rendering(c.slave, t);
+    prune();
 }
 
-const Unit *Schedule::find(int id) const
+// Finished jobs are forgotten: the schedule's memory does not grow with the frames.
+void Schedule::prune()
 {
-    auto it = units_.find(id);
-    return it == units_.end() ? nullptr : &it->second;
+    for (auto k = jobs_.begin(); k != jobs_.end();)
+        k = k->second.live ? std::next(k) : jobs_.erase(k);
 }
 
-int Schedule::running() const
+int Schedule::job_failed(int id, double t)
+{
+    auto it = jobs_.find(id);
+    if (it == jobs_.end() || !it->second.live)
+        return 0;
+    Job j = it->second;
+    jobs_.erase(it);
+    if (j.dup_of >= 0 && jobs_.count(j.dup_of))
+        jobs_[j.dup_of].has_dup = false;
+    auto s = slaves_.find(j.slave);
+    orphan(j.index, j.tiles, j.failures + 1, s == slaves_.end() ? 0 : s->second.host);
+    next_rendering(j.slave, t);
+    return missing(j.index, j.tiles).empty() ? 0 : j.failures + 1;
+}
+
+void Schedule::note_speed(int slave, double pixels, double seconds)
+{
+    if (seconds <= 0 || pixels <= 0)
+        return;
+    job_seconds_ = job_seconds_ <= 0 ? seconds
+                                     : (1 - kSpeedWeight) * job_seconds_ + kSpeedWeight * seconds;
+    double v = pixels / seconds;
+    auto it = speed_.find(slave);
+    speed_[slave] = it == speed_.end() ? v : (1 - kSpeedWeight) * it->second + kSpeedWeight * v;
+}
+
+const Job *Schedule::find(int id) const
+{
+    auto it = jobs_.find(id);
+    return it == jobs_.end() ? nullptr : &it->second;
+}
+
+int Schedule::live_jobs(int slave) const
 {
     int n = 0;
-    for (auto &kv : units_)
-        if (kv.second.live && kv.second.slave != 0)
-            n++;
+    for (auto &kv : jobs_)
+        n += kv.second.live && kv.second.slave == slave;
     return n;
-}
-
-void Schedule::assign(int id, int tid, double t)
-{
-    Unit &u = units_.at(id);
-    auto it = std::find(queue_.begin(), queue_.end(), id);
-    if (it != queue_.end())
-        queue_.erase(it);
-    u.slave = tid;
-    u.started = t;
-}
-
-Action Schedule::next_for(int tid, double t, bool allow_duplicates)
-{
-    Action a;
-    // 1. Queued work, skipping cells finished meanwhile.
-    while (!queue_.empty()) {
-        int id = queue_.front();
-        Unit &u = units_.at(id);
-        while (u.next <= u.hi && done(u.tile, u.next))
-            u.next++;
-        while (u.hi >= u.next && done(u.tile, u.hi))
-            u.hi--;
-        if (u.next > u.hi) {
-            queue_.pop_front();
-            u.live = false;
-            continue;
-        }
-        u.lo = u.next;
-        assign(id, tid, t);
-        a.kind = Action::Run;
-        a.unit = id;
-        return a;
-    }
-
-    // 2. Split the running unit with the most work left (frames x tile pixels).
-    Unit *best = nullptr;
-    long best_work = 0;
-    for (auto &kv : units_) {
-        Unit &u = kv.second;
-        if (!u.live || u.slave == 0 || u.truncating || u.cancelling || u.dup_of >= 0 ||
-            u.has_dup || u.no_split)
-            continue;
-        if (u.remaining() < 2)
-            continue;
-        long work = long(u.remaining()) * tiles_[size_t(u.tile)].area();
-        if (work > best_work) {
-            best_work = work;
-            best = &u;
-        }
-    }
-    if (best) {
-        best->truncating = true;
-        best->reserved = tid;
-        a.kind = Action::Split;
-        a.unit = best->id;
-        // The slave keeps the first half, including the frame it is rendering now.
-        a.new_hi = best->next + (best->remaining() + 1) / 2 - 1;
-        return a;
-    }
-
-    // 3. Straggler: duplicate the oldest running unit that still has undone cells.
-    if (!allow_duplicates)
-        return a;
-    Unit *oldest = nullptr;
-    for (auto &kv : units_) {
-        Unit &u = kv.second;
-        if (!u.live || u.slave == 0 || u.slave == tid || u.truncating || u.cancelling ||
-            u.dup_of >= 0 || u.has_dup)
-            continue;
-        if (u.next > u.hi || all_done(u.tile, u.next, u.hi))
-            continue;
-        if (!oldest || u.started < oldest->started)
-            oldest = &u;
-    }
-    if (oldest) {
-        int lo = oldest->next;
-        while (done(oldest->tile, lo))
-            lo++;
-        int id = add_unit(oldest->tile, lo, oldest->hi, true);
-        Unit &d = units_.at(id);
-        d.dup_of = oldest->id;
-        oldest->has_dup = true;
-        assign(id, tid, t);
-        a.kind = Action::Run;
-        a.unit = id;
-    }
-    return a;
-}
-
-bool Schedule::frame_arrived(int id, int index, std::vector<int> &cancel)
-{
-    auto it = units_.find(id);
-    if (it == units_.end() || index < 0 || index >= nframes_)
-        return false;
-    Unit &u = it->second;
-    u.next = std::max(u.next, index + 1);
-    bool fresh = !done(u.tile, index);
-    if (fresh)
-        mark_done(u.tile, index);
-    // Any running unit of this tile whose remaining cells are all done has nothing to add.
-    for (auto &kv : units_) {
-        Unit &v = kv.second;
-        if (!v.live || v.slave == 0 || v.tile != u.tile || v.cancelling || v.next > v.hi)
-            continue;
-        if (all_done(v.tile, v.next, v.hi)) {
-            v.cancelling = true;
-            cancel.push_back(v.id);
-        }
-    }
-    return fresh;
-}
-
-int Schedule::truncated(int id, int accepted, int &reserved)
-{
-    reserved = 0;
-    auto it = units_.find(id);
-    if (it == units_.end())
-        return -1;
-    Unit &u = it->second;
-    if (!u.truncating)
-        return -1;
-    u.truncating = false;
-    reserved = u.reserved;
-    u.reserved = 0;
-    if (!u.live || accepted < 0)
-        return -1;
-    int old_hi = u.hi;
-    u.hi = std::min(old_hi, std::max(accepted, u.next - 1));
-    if (u.hi >= old_hi)
-        return -1;
-    return add_unit(u.tile, u.hi + 1, old_hi, true);
-}
-
-int Schedule::truncate_timed_out(int id)
-{
-    auto it = units_.find(id);
-    if (it == units_.end() || !it->second.truncating)
-        return 0;
-    Unit &u = it->second;
-    int reserved = u.reserved;
-    u.truncating = false;
-    u.reserved = 0;
-    u.no_split = true;
-    return reserved;
-}
-
-bool Schedule::covered(int tile, int index, int except) const
-{
-    for (auto &kv : units_) {
-        const Unit &v = kv.second;
-        if (!v.live || v.id == except || v.tile != tile)
-            continue;
-        int from = v.slave != 0 ? v.next : v.lo;
-        if (index >= from && index <= v.hi)
-            return true;
-    }
-    return false;
 }
 
 int Schedule::repair()
 {
+    // Cells a live job, an orphan, or a range's reservation or undivided frames will render.
+    std::vector<char> covered(done_.size(), 0);
+    auto cover = [&](int index, const std::vector<int> &tiles) {
+        for (int t : tiles)
+            covered[size_t(index) * tiles_.size() + size_t(t)] = 1;
+    };
+    for (auto &kv : jobs_)
+        if (kv.second.live)
+            cover(kv.second.index, kv.second.tiles);
+    for (const Orphan &o : orphans_)
+        cover(o.index, o.tiles);
+    for (const Range &r : ranges_) {
+        for (auto &kv : r.reserved)
+            for (auto &share : kv.second)
+                cover(kv.first, share.second);
+        for (int i = r.frontier; i <= r.hi; i++)
+            for (int t = 0; t < tiles(); t++)
+                covered[size_t(i) * tiles_.size() + size_t(t)] = 1;
+    }
     int added = 0;
-    for (int t = 0; t < tiles(); t++) {
-        int run_lo = -1;
-        for (int i = 0; i <= nframes_; i++) {
-            bool missing = i < nframes_ && !done(t, i) && !covered(t, i, -1);
-            if (missing && run_lo < 0)
-                run_lo = i;
-            if (!missing && run_lo >= 0) {
-                add_unit(t, run_lo, i - 1, false);
-                added++;
-                run_lo = -1;
-            }
+    for (int i = 0; i < nframes_; i++) {
+        std::vector<int> lost;
+        for (int t = 0; t < tiles(); t++)
+            if (!done(i, t) && !covered[size_t(i) * tiles_.size() + size_t(t)])
+                lost.push_back(t);
+        if (!lost.empty()) {
+            orphan(i, lost, 0, 0);
+            added += int(lost.size());
         }
     }
     return added;
-}
-
-int Schedule::unit_ended(int id)
-{
-    auto it = units_.find(id);
-    if (it == units_.end() || !it->second.live)
-        return 0;
-    Unit &u = it->second;
-    u.live = false;
-    auto q = std::find(queue_.begin(), queue_.end(), id);
-    if (q != queue_.end())
-        queue_.erase(q);
-    int reserved = 0;
-    if (u.truncating) {
-        reserved = u.reserved;
-        u.truncating = false;
-        u.reserved = 0;
-    }
-    // Unlink duplicates so the survivor can be split or duplicated again.
-    if (u.dup_of >= 0) {
-        auto o = units_.find(u.dup_of);
-        if (o != units_.end())
-            o->second.has_dup = false;
-    }
-    if (u.has_dup) {
-        for (auto &kv : units_)
-            if (kv.second.live && kv.second.dup_of == id)
-                kv.second.dup_of = -1;
-        u.has_dup = false;
-    }
-    // Re-queue uncovered missing cells as consecutive runs, oldest work first.
-    std::vector<std::pair<int, int>> runs;
-    // From lo, not next: a cell the unit skipped (lost output) is re-queued too.
-    for (int i = u.lo; i <= u.hi; i++) {
-        if (done(u.tile, i) || covered(u.tile, i, id))
-            continue;
-        if (!runs.empty() && runs.back().second == i - 1)
-            runs.back().second = i;
-        else
-            runs.push_back({i, i});
-    }
-    for (auto r = runs.rbegin(); r != runs.rend(); ++r)
-        add_unit(u.tile, r->first, r->second, true);
-    return reserved;
 }
 
 } // namespace fc

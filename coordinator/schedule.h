@@ -1,22 +1,44 @@
-// schedule.h - which slave renders which (tile, frame range): the work-unit bookkeeping of
-// fc-master, kept free of PVM so it can be tested on its own.
+// schedule.h - which slave renders which tiles of which frame: fc-master's bookkeeping, free of
+// PVM so it can be tested on its own.
 //
-// The image is cut into tiles (one tile = the whole render area for sequence division); the
-// animation is a list of frames addressed by index 0..nframes-1. A cell (tile, index) is done
-// once its pixels reached the master. A work unit covers one tile over a consecutive index
-// range [lo, hi] and is run by one POV-Ray process. Invariant: every cell that is not done is
-// covered by at least one live unit (queued or running); only straggler duplicates cover a
-// cell twice.
+// The render area is cut into tiles (one tile, the whole area, for sequence division); the
+// animation's frames are addressed by index 0..nframes-1. A cell (frame, tile) is done once its
+// pixels reached the master. A job is what a slave renders with one parse: one frame and a set
+// of tiles. A slave's renderer walks forward through the frames, so frame coherence keeps its
+// state from job to job as long as the slave keeps its tiles.
 //
-// Load balancing (Davis & Davis, section 3): when a slave runs dry and nothing is queued, the
-// running unit with the most remaining work is split: its slave is asked to stop at the middle
-// of what it has left (FC_TRUNCATE), and the tail goes to the idle slave. When nothing can be
-// split, an idle slave duplicates the oldest running unit; the first result of a cell wins and
-// the slower copy is cancelled once everything it has left is done.
+// Frames are grouped into ranges of consecutive frames (Davis & Davis, section 3): sequence
+// division gives each slave its own range of whole frames, frame division puts every slave in
+// one range and divides each frame's tiles among them, hybrid has a few ranges with a few
+// slaves each. In a range with several slaves, each frame's tiles are divided when the first
+// of them asks for that frame: the first time dealt out in raster order by speed (so every
+// slave has tiles all over the frame and shares its expensive regions, such as the few that
+// frame coherence re-traces), later every slave keeps the tiles it had (its renderer's
+// coherence).
+// Slaves of a range work on neighbouring frames, so frames complete in order and the master
+// holds a few frames, not all of them: a range never divides a frame more than kWindow frames
+// past its oldest unfinished one. A slave that reaches that limit waits, and the next
+// division moves tiles from the slowest to the fastest slaves (by measured speed) until no
+// share exceeds its speed's by more than 20%, at most once every kMoveGap frames: with frame
+// coherence tiles move only when the slaves really drift apart, since a moved tile costs a
+// full re-trace on its new slave (its renderer starts afresh, and such a first frame does not
+// count in the slave's speed). Without fc (set_cheap_moves) every division balances, to 5%.
+//
+// Load balancing: a slave whose range is finished joins the range with the most work left per
+// slave (frame division) or splits it in the middle, taking the later half (sequence and
+// hybrid); jobs are handed out at most two per slave ahead, so a split needs no handshake.
+// When nothing is left to hand out, an idle slave duplicates the oldest job another slave is
+// rendering, once it ran twice as long as jobs take (stragglers); the first result of each
+// cell wins and the slower copy is cancelled.
+//
+// Faults: the cells of a job whose slave died or failed go back to the front of the queue
+// (orphans), preferring another host for failed ones; a cell that failed kRetries times
+// makes the render fail.
 #pragma once
 
 #include <deque>
 #include <map>
+#include <set>
 #include <string>
 #include <vector>
 
@@ -32,97 +54,131 @@ bool parse_division(const std::string &s, Division &d);
 // Tiles of at most `size` pixels square covering area, row by row.
 std::vector<Rect> make_tiles(const Rect &area, int size);
 
-struct Unit {
+struct Job {
     int id = 0;
-    int tile = 0;
-    int lo = 0, hi = 0;         // frame indices, inclusive; hi shrinks when truncated
-    int next = 0;               // first index this unit has not returned yet
-    int slave = 0;              // tid running it; 0 while queued
-    int dup_of = -1;            // the unit this one duplicates, -1 if none
-    bool has_dup = false;       // a duplicate of this unit is live
-    bool truncating = false;    // FC_TRUNCATE sent, FC_TRUNCATED not yet received
-    int reserved = 0;           // idle slave waiting for this unit's tail
-    bool cancelling = false;    // FC_CANCEL sent
-    bool no_split = false;      // its slave left an FC_TRUNCATE unanswered: only duplicate it
-    bool live = true;           // queued or running
-    double started = 0;         // when it was handed out
-    int remaining() const { return hi - next + 1; }
-};
-
-struct Action {
-    enum Kind { None, Run, Split } kind = None;
-    int unit = -1;              // Run: the unit now assigned; Split: the unit to truncate
-    int new_hi = 0;             // Split: ask its slave to stop after this index
+    int index = 0;              // frame index
+    std::vector<int> tiles;     // ascending
+    int slave = 0;
+    int range = -1;             // the range it came from (-1: an orphan or a duplicate)
+    int dup_of = -1;            // the job this one duplicates
+    bool has_dup = false;
+    bool live = true;           // handed out, no result yet
+    int failures = 0;           // failed attempts of these cells before this one
+    double started = 0;         // handed out
+    double rendering = -1;      // its slave began it (its previous job was done); -1: queued
 };
 
 class Schedule {
 public:
-    Schedule(const std::vector<Rect> &tiles, int nframes);
+    static const int kWindow = 4;   // frames a range may divide beyond its oldest unfinished one
+    static const int kRetries = 3;  // failed attempts of a cell before the render fails
+    static constexpr double kStragglerSeconds = 1.0;   // a job runs this long before a copy
+    static const int kMoveGap = 2 * kWindow;    // frames between two rebalancing moves
+
+    Schedule(const std::vector<Rect> &tiles, int nframes, Division division);
 
     int tiles() const { return int(tiles_.size()); }
     int frames() const { return nframes_; }
     const Rect &tile(int t) const { return tiles_[size_t(t)]; }
 
-    // Resume: a cell that is already done needs no work.
-    void mark_done(int tile, int index);
-    bool done(int tile, int index) const;
+    // Resume: a frame that is already complete needs no work.
+    void mark_frame_done(int index);
+    bool done(int index, int tile) const;
     bool frame_done(int index) const { return frame_cells_[size_t(index)] == tiles(); }
     int frames_done() const { return frames_done_; }
+    long cells_done() const { return cells_done_; }
     bool finished() const { return frames_done_ == nframes_; }
 
-    // Fill the queue with every missing cell: sequence = `parts` consecutive frame ranges,
-    // frame = every tile over the whole range, hybrid = `parts` ranges x every tile.
-    void plan(Division division, int parts);
+    // Cut the missing frames into `parts` ranges (sequence, hybrid) or one (frame).
+    void plan(int parts);
 
-    // What idle slave tid does now. Run: the unit is assigned to tid (popped from the queue,
-    // or a new straggler duplicate). Split: send FC_TRUNCATE(unit, new_hi) to the unit's
-    // slave; tid is reserved for the tail (see truncated()).
-    Action next_for(int tid, double t, bool allow_duplicates);
+    // Without frame coherence a moved tile costs its new slave nothing extra: then every
+    // division balances by speed, not only after a slave had to wait.
+    void set_cheap_moves(bool cheap) { cheap_moves_ = cheap; }
 
-    // A cell arrived from unit `unit`. Returns true if it is new (store its pixels), false
-    // for a duplicate. Units that have nothing left to do are appended to cancel.
-    bool frame_arrived(int unit, int index, std::vector<int> &cancel);
+    // Slaves: a slave joins when it is ready (host identifies its machine for retries).
+    void add_slave(int slave, int host);
+    // A slave is gone: its live jobs' missing cells become orphans. Returns those jobs.
+    std::vector<int> remove_slave(int slave);
 
-    // The unit's slave answered FC_TRUNCATE, it stops after index accepted (-1: not
-    // running). Returns the tail unit id (-1 if none) and sets reserved to the slave that was
-    // waiting for it (0 if none); the caller assigns the tail with assign() or leaves it queued.
-    int truncated(int unit, int accepted, int &reserved);
+    // The next job for slave, or nullptr when there is nothing for it now.
+    const Job *next_job(int slave, double t, bool allow_duplicates);
 
-    // The unit's slave did not answer FC_TRUNCATE in time: forget the request (a late answer
-    // is ignored, its tail then comes back through unit_ended) and never split it again.
-    // Returns the slave that was reserved for the tail (0 if none).
-    int truncate_timed_out(int unit);
+    // The result of job id arrived: the given tiles of frame index (a job of a slave that was
+    // given up for lost still counts: the first result of a cell wins). fresh gets the tiles
+    // that were new (store their pixels); jobs that have nothing left to add are appended to
+    // cancel (they are no longer live).
+    void job_done(int id, int index, const std::vector<int> &tiles, std::vector<int> &fresh,
+                  std::vector<Job> &cancel, double t);
 
-    // The unit ended (finished, cancelled, truncated, or its slave died). Its cells that are
-    // neither done nor covered by another live unit go back to the front of the queue.
-    // Returns a slave that was reserved for this unit's tail (0 if none): it is idle again.
-    int unit_ended(int unit);
+    // A job failed on its slave (not a scene error): its missing cells become orphans that
+    // avoid that host. Returns the largest failure count of those cells.
+    int job_failed(int id, double t);
 
-    // Queue every missing cell that no live unit covers (restores the invariant; returns the
-    // number of units added, 0 when it held).
+    // Measured speed of a slave: pixels of a job per second.
+    void note_speed(int slave, double pixels, double seconds);
+
+    const Job *find(int id) const;
+    const std::map<int, Job> &jobs() const { return jobs_; }
+    int live_jobs(int slave) const;
+    size_t orphans() const { return orphans_.size(); }
+
+    // Restore the invariant "every missing cell is covered by a live job, a range's
+    // undivided frames or an orphan" if it ever broke: returns the cells queued again.
     int repair();
 
-    // Hand queued unit to slave tid.
-    void assign(int unit, int tid, double t);
-
-    Unit &unit(int id) { return units_.at(id); }
-    const Unit *find(int id) const;
-    const std::map<int, Unit> &units() const { return units_; }
-    size_t queued() const { return queue_.size(); }
-    int running() const;
-
 private:
-    int add_unit(int tile, int lo, int hi, bool front);
-    bool covered(int tile, int index, int except) const;
-    bool all_done(int tile, int lo, int hi) const;
+    struct Range {
+        int lo = 0, hi = 0;             // frame indices, inclusive; hi shrinks when split
+        int frontier = 0;               // first index not divided among the members yet
+        int oldest = 0;                 // no frame before it is unfinished (only grows)
+        std::vector<int> members;
+        std::map<int, std::map<int, std::vector<int>>> reserved;   // index -> slave -> tiles
+        std::map<int, int> owner;       // tile -> slave that had it last
+        bool lagging = false;           // a member waited for the others: rebalance
+        int last_move = -1000;          // index of the last division that moved tiles
+    };
+    struct SlaveState {
+        int host = 0;
+        int range = -1;
+        int cursor = 0;                 // next index it takes in its range
+    };
+    struct Orphan {
+        int index = 0;
+        std::vector<int> tiles;
+        int failures = 0;
+        std::set<int> avoid_hosts;
+    };
+
+    void mark_done(int index, int tile);
+    void prune();
+    void next_rendering(int slave, double t);
+    int add_job(int slave, int index, const std::vector<int> &tiles, int range, double t);
+    const Job *take_orphan(int slave, double t);
+    const Job *take_from_range(int slave, double t);
+    bool find_range(int slave);
+    const Job *duplicate(int slave, double t);
+    void divide(int r, int index);
+    void leave_range(int slave);
+    void orphan(int index, const std::vector<int> &tiles, int failures, int avoid_host);
+    std::vector<int> missing(int index, const std::vector<int> &tiles) const;
+    int oldest_unfinished(Range &range) const;
+    long range_work(const Range &range) const;
 
     std::vector<Rect> tiles_;
     int nframes_;
-    std::vector<char> done_;            // tile-major: done_[tile * nframes + index]
-    std::vector<int> frame_cells_;      // done cells per frame index
+    Division division_;
+    std::vector<char> done_;            // frame-major: done_[index * tiles + tile]
+    std::vector<int> frame_cells_;
     int frames_done_ = 0;
-    std::map<int, Unit> units_;
-    std::deque<int> queue_;
+    long cells_done_ = 0;
+    std::vector<Range> ranges_;
+    std::map<int, SlaveState> slaves_;
+    std::map<int, double> speed_;       // pixels per second, smoothed
+    double job_seconds_ = 0;            // how long a job takes, smoothed
+    bool cheap_moves_ = false;
+    std::deque<Orphan> orphans_;
+    std::map<int, Job> jobs_;
     int next_id_ = 1;
 };
 

@@ -1,9 +1,10 @@
-// schedule_test.cpp - unit tests of the work-unit bookkeeping (no PVM, no renderer).
+// schedule_test.cpp - unit tests of the job bookkeeping (no PVM, no renderer).
 // Run: make -C coordinator test-schedule
 #include <cstdio>
 #include <cstdlib>
 #include <map>
 #include <random>
+#include <set>
 #include <vector>
 
 #include "schedule.h"
@@ -20,243 +21,348 @@ static int failures = 0;
         }                                                                            \
     } while (0)
 
-// Every cell that is not done is covered by a live unit (queued: lo..hi, running: next..hi).
-static bool covered_everywhere(const Schedule &s)
+static const Rect kArea{0, 0, 160, 120};
+
+// Deliver job j: every tile of it arrives.
+static std::vector<int> deliver(Schedule &s, const Job &j, std::vector<Job> *cancelled = nullptr,
+                                double t = 0)
 {
-    for (int t = 0; t < s.tiles(); t++)
-        for (int i = 0; i < s.frames(); i++) {
-            if (s.done(t, i))
-                continue;
-            bool cov = false;
-            for (auto &kv : s.units()) {
-                const Unit &u = kv.second;
-                int from = u.slave ? u.next : u.lo;
-                cov = cov || (u.live && u.tile == t && i >= from && i <= u.hi);
-            }
-            if (!cov)
-                return false;
+    std::vector<int> fresh;
+    std::vector<Job> cancel;
+    Job copy = j;
+    s.job_done(copy.id, copy.index, copy.tiles, fresh, cancel, t);
+    if (cancelled)
+        *cancelled = cancel;
+    return fresh;
+}
+
+static void test_sequence_ranges()
+{
+    Schedule s({kArea}, 10, Division::Sequence);
+    for (int slave : {1, 2, 3})
+        s.add_slave(slave, 100);
+    s.plan(3);
+    // Each slave starts its own consecutive range: 0..2, 3..5, 6..9.
+    CHECK(s.next_job(1, 0, true)->index == 0);
+    CHECK(s.next_job(2, 0, true)->index == 3);
+    CHECK(s.next_job(3, 0, true)->index == 6);
+    // A slave's next job is the next frame of its range; whole frames only.
+    const Job *j = s.next_job(1, 0, true);
+    CHECK(j->index == 1 && j->tiles == std::vector<int>{0});
+}
+
+static void test_frame_division_keeps_tiles()
+{
+    Schedule s(make_tiles(kArea, 40), 6, Division::Frame);     // 4 x 3 tiles
+    s.add_slave(1, 100);
+    s.add_slave(2, 100);
+    s.plan(2);
+    std::map<int, std::vector<int>> first;
+    for (int i = 0; i < 6; i++) {
+        for (int slave : {1, 2}) {
+            const Job *j = s.next_job(slave, i, true);
+            CHECK(j && j->index == i);
+            // Each slave keeps the tiles it had: its renderer's frame coherence stays valid.
+            if (i == 0)
+                first[slave] = j->tiles;
+            else
+                CHECK(j->tiles == first[slave]);
+            deliver(s, *j);
         }
-    return true;
+        // Both halves together are the frame, and it is complete now.
+        CHECK(s.frame_done(i));
+    }
+    CHECK(first[1].size() == 6 && first[2].size() == 6);
+    CHECK(s.finished());
 }
 
-static void test_plan_sequence()
+static void test_window_and_rebalance()
 {
-    Schedule s({Rect{0, 0, 10, 10}}, 10);
-    s.plan(Division::Sequence, 3);
-    // Three consecutive ranges of ceil(10/3) frames.
-    CHECK(s.queued() == 3);
-    std::vector<std::pair<int, int>> ranges;
-    for (auto &kv : s.units())
-        ranges.push_back({kv.second.lo, kv.second.hi});
-    CHECK((ranges == std::vector<std::pair<int, int>>{{0, 3}, {4, 7}, {8, 9}}));
-    CHECK(covered_everywhere(s));
+    Schedule s(make_tiles(kArea, 40), 40, Division::Frame);
+    s.add_slave(1, 100);
+    s.add_slave(2, 100);
+    s.plan(1);
+    const Job *slow = s.next_job(2, 0, true);     // slave 2 takes frame 0 and never returns
+    CHECK(slow && slow->index == 0);
+    int fast_jobs = 0;
+    while (const Job *j = s.next_job(1, 0, true)) {
+        s.note_speed(1, 1e6, 0.1);
+        deliver(s, *j);
+        fast_jobs++;
+        CHECK(fast_jobs < 100);
+    }
+    // The fast slave waits once the range divided kWindow frames past the oldest unfinished.
+    CHECK(fast_jobs == Schedule::kWindow);
+    CHECK(s.frames_done() == 0);
+    // Slave 2 catches up slowly; the next division gives the fast slave more tiles.
+    s.note_speed(2, 1e5, 1.0);
+    deliver(s, *slow);
+    std::vector<int> mine;
+    while (const Job *j = s.next_job(1, 1, true)) {
+        mine = j->tiles;
+        deliver(s, *j);
+    }
+    CHECK(mine.size() > 6);
 }
 
-static void test_plan_frame_and_hybrid()
+static void test_cheap_moves_balance_every_frame()
 {
-    std::vector<Rect> tiles = make_tiles(Rect{0, 0, 160, 120}, 80);
-    CHECK(tiles.size() == 4);
-    CHECK((tiles[3] == Rect{80, 80, 160, 120}));
-    Schedule f(tiles, 6);
-    f.plan(Division::Frame, 2);
-    // Frame division: every tile over the whole range.
-    CHECK(f.queued() == 4);
-    for (auto &kv : f.units())
-        CHECK(kv.second.lo == 0 && kv.second.hi == 5);
-    Schedule h(tiles, 6);
-    h.plan(Division::Hybrid, 2);
-    // Hybrid: 2 ranges x 4 tiles, earlier range first.
-    CHECK(h.queued() == 8);
-    CHECK(h.unit(1).hi == 2 && h.unit(5).lo == 3);
+    Schedule s(make_tiles(kArea, 40), 10, Division::Frame);
+    s.set_cheap_moves(true);
+    s.add_slave(1, 100);
+    s.add_slave(2, 200);
+    s.plan(1);
+    const Job *a = s.next_job(1, 0, true);
+    Job first_a = *a;
+    const Job *b = s.next_job(2, 0, true);
+    Job first_b = *b;
+    CHECK(first_a.tiles.size() == 6 && first_b.tiles.size() == 6);
+    // Slave 1 renders twice as fast: without fc, the next frame it asks for gives it more.
+    s.note_speed(1, 2e5, 1.0);
+    s.note_speed(2, 1e5, 1.0);
+    deliver(s, first_a);
+    deliver(s, first_b);
+    const Job *c = s.next_job(1, 1, true);
+    CHECK(c && c->index == 1 && c->tiles.size() >= 7);
+}
+
+static void test_more_slaves_than_tiles()
+{
+    Schedule s(make_tiles(kArea, 80), 12, Division::Frame);     // 4 tiles
+    for (int slave = 1; slave <= 6; slave++)
+        s.add_slave(slave, 100 * slave);
+    s.plan(1);
+    // Four slaves share the frames' tiles; the other two take later frames of their own.
+    std::set<int> busy;
+    for (int slave = 1; slave <= 6; slave++)
+        if (s.next_job(slave, 0, false))
+            busy.insert(slave);
+    CHECK(busy.size() == 6);
 }
 
 static void test_resume_skips_done_frames()
 {
-    Schedule s({Rect{0, 0, 4, 4}}, 10);
+    Schedule s({kArea}, 10, Division::Sequence);
     for (int i : {0, 1, 5})
-        s.mark_done(0, i);
-    s.plan(Division::Sequence, 1);
-    // Units never span a frame that is already done.
-    std::vector<std::pair<int, int>> ranges;
-    for (auto &kv : s.units())
-        ranges.push_back({kv.second.lo, kv.second.hi});
-    CHECK((ranges == std::vector<std::pair<int, int>>{{2, 4}, {6, 9}}));
+        s.mark_frame_done(i);
     CHECK(s.frames_done() == 3);
-}
-
-static void test_split_and_truncate()
-{
-    Schedule s({Rect{0, 0, 4, 4}}, 10);
-    s.plan(Division::Sequence, 1);
-    Action a = s.next_for(100, 0, true);
-    CHECK(a.kind == Action::Run);
-    int big = a.unit;
-    std::vector<int> cancel;
-    s.frame_arrived(big, 0, cancel);
-    s.frame_arrived(big, 1, cancel);
-    // Nothing queued: the idle slave gets half of what is left (next = 2, 8 frames left).
-    Action b = s.next_for(200, 1, true);
-    CHECK(b.kind == Action::Split && b.unit == big && b.new_hi == 5);
-    // The busy slave had already started frame 6: it keeps 2..6, the tail is 7..9.
-    int reserved = 0;
-    int tail = s.truncated(big, 6, reserved);
-    CHECK(reserved == 200 && tail > 0);
-    CHECK(s.unit(big).hi == 6);
-    CHECK(s.unit(tail).lo == 7 && s.unit(tail).hi == 9);
-    s.assign(tail, 200, 1);
-    CHECK(covered_everywhere(s));
-    // A unit that already finished everything yields no tail.
-    Action c = s.next_for(300, 2, false);
-    CHECK(c.kind == Action::Split);
-    int r2 = 0;
-    CHECK(s.truncated(c.unit, s.unit(c.unit).hi, r2) == -1 && r2 == 300);
-}
-
-static void test_dead_slave_requeues()
-{
-    Schedule s({Rect{0, 0, 4, 4}}, 6);
-    s.plan(Division::Sequence, 1);
-    Action a = s.next_for(100, 0, true);
-    std::vector<int> cancel;
-    s.frame_arrived(a.unit, 0, cancel);
-    s.unit_ended(a.unit);
-    // The dead slave's remaining frames are queued again, nothing more.
-    CHECK(s.queued() == 1);
-    Action b = s.next_for(200, 1, true);
-    CHECK(b.kind == Action::Run && s.unit(b.unit).lo == 1 && s.unit(b.unit).hi == 5);
-    CHECK(covered_everywhere(s));
-}
-
-static void test_skipped_cell_requeued()
-{
-    Schedule s({Rect{0, 0, 4, 4}}, 5);
-    s.plan(Division::Sequence, 1);
-    Action a = s.next_for(100, 0, true);
-    std::vector<int> cancel;
-    for (int i : {0, 1, 3, 4})
-        s.frame_arrived(a.unit, i, cancel);
-    s.unit_ended(a.unit);
-    // A cell the unit never delivered (lost renderer output) is queued again.
-    CHECK(s.queued() == 1);
-    Action b = s.next_for(100, 1, true);
-    CHECK(b.kind == Action::Run && s.unit(b.unit).lo == 2 && s.unit(b.unit).hi == 2);
-}
-
-static void test_repair()
-{
-    Schedule s({Rect{0, 0, 4, 4}, Rect{4, 0, 8, 4}}, 4);
-    s.plan(Division::Frame, 1);
-    CHECK(s.repair() == 0);     // the plan covers everything
-    s.mark_done(0, 0);
-    std::vector<int> ids;
-    for (auto &kv : s.units())
-        ids.push_back(kv.first);
-    for (int id : ids) {
-        s.unit(id).live = false;    // simulate lost bookkeeping
+    s.add_slave(1, 100);
+    s.plan(1);
+    std::vector<int> got;
+    while (const Job *j = s.next_job(1, 0, false)) {
+        got.push_back(j->index);
+        deliver(s, *j);
     }
-    // Every missing cell is covered again: tile 0 frames 1..3, tile 1 frames 0..3.
-    CHECK(s.repair() == 2);
-    CHECK(covered_everywhere(s));
+    // Finished frames get no job.
+    CHECK((got == std::vector<int>{2, 3, 4, 6, 7, 8, 9}));
+    CHECK(s.finished());
+}
+
+static void test_idle_slave_splits_range()
+{
+    Schedule s({kArea}, 10, Division::Sequence);
+    s.add_slave(1, 100);
+    s.plan(1);
+    const Job *a = s.next_job(1, 0, true);
+    const Job *b = s.next_job(1, 0, true);
+    CHECK(a->index == 0 && b->index == 1);
+    // A second slave arrives: it takes the later half of what is not handed out (2..9).
+    s.add_slave(2, 100);
+    const Job *c = s.next_job(2, 0, true);
+    CHECK(c && c->index == 6);
+    std::set<int> one, two;
+    for (int k = 0; k < 10; k++) {
+        if (const Job *j = s.next_job(1, 0, false)) {
+            one.insert(j->index);
+            deliver(s, *j);
+        }
+        if (const Job *j = s.next_job(2, 0, false)) {
+            two.insert(j->index);
+            deliver(s, *j);
+        }
+    }
+    // No frame is handed to both: the split needs no handshake.
+    for (int i : one)
+        CHECK(!two.count(i) && i < 6);
+}
+
+static void test_dead_slave_orphans()
+{
+    Schedule s(make_tiles(kArea, 80), 4, Division::Frame);
+    s.add_slave(1, 100);
+    s.add_slave(2, 200);
+    s.plan(1);
+    const Job *a = s.next_job(1, 0, true);
+    int index = a->index;
+    std::vector<int> tiles = a->tiles;
+    std::vector<int> lost = s.remove_slave(1);
+    CHECK(lost.size() == 1);
+    // Its cells go first to the next slave that asks.
+    const Job *b = s.next_job(2, 1, true);
+    CHECK(b && b->index == index && b->tiles == tiles);
+    CHECK(s.repair() == 0);
+}
+
+static void test_failure_retries_elsewhere()
+{
+    Schedule s({kArea}, 2, Division::Sequence);
+    s.add_slave(1, 100);
+    s.add_slave(2, 100);
+    s.add_slave(3, 300);
+    s.plan(1);
+    const Job *a = s.next_job(1, 0, true);
+    int index = a->index;
+    CHECK(s.job_failed(a->id, 0) == 1);
+    // Another slave on the same host does not get it while another host can.
+    const Job *b = s.next_job(2, 0, true);
+    CHECK(!b || b->index != index);
+    const Job *c = s.next_job(3, 0, true);
+    CHECK(c && c->index == index && c->failures == 1);
+    CHECK(s.job_failed(c->id, 0) == 2);
+    const Job *d = s.next_job(1, 0, true);
+    CHECK(d && d->index == index);
+    CHECK(s.job_failed(d->id, 0) == Schedule::kRetries);
 }
 
 static void test_straggler_duplicate()
 {
-    Schedule s({Rect{0, 0, 4, 4}}, 1);
-    s.plan(Division::Sequence, 1);
-    Action a = s.next_for(100, 0, true);
-    // One frame left, cannot split: the idle slave duplicates it.
-    Action b = s.next_for(200, 1, true);
-    CHECK(b.kind == Action::Run && b.unit != a.unit && s.unit(b.unit).dup_of == a.unit);
-    CHECK(s.next_for(300, 2, true).kind == Action::None);   // one copy only
-    std::vector<int> cancel;
-    // First result wins; the other copy has nothing left and is cancelled.
-    CHECK(s.frame_arrived(b.unit, 0, cancel));
-    CHECK(cancel == std::vector<int>{a.unit});
-    CHECK(!s.frame_arrived(a.unit, 0, cancel));
+    Schedule s({kArea}, 1, Division::Sequence);
+    s.add_slave(1, 100);
+    s.add_slave(2, 100);
+    s.plan(1);
+    const Job *a = s.next_job(1, 0, true);
+    int aid = a->id;
+    // Nothing else to do, but the job just started: no copy yet.
+    CHECK(s.next_job(2, 0.5, true) == nullptr);
+    const Job *b = s.next_job(2, 5, true);
+    CHECK(b && b->dup_of == aid && b->index == 0);
+    CHECK(s.next_job(2, 6, true) == nullptr);   // one copy only
+    std::vector<Job> cancel;
+    // The first result wins; the other copy has nothing left and is cancelled.
+    CHECK(deliver(s, *b, &cancel) == std::vector<int>{0});
+    CHECK(cancel.size() == 1 && cancel[0].id == aid);
     CHECK(s.finished());
-    CHECK(s.next_for(300, 3, false).kind == Action::None);
 }
 
-// Random slaves finish frames, get split, die; the work always completes and, without
-// duplicates, no cell is ever rendered twice.
+static void test_queued_job_is_not_a_straggler()
+{
+    Schedule s({kArea}, 2, Division::Sequence);
+    s.add_slave(1, 100);
+    s.plan(1);
+    const Job *a = s.next_job(1, 0, true);
+    Job first = *a;
+    const Job *b = s.next_job(1, 0, true);
+    int bid = b->id;
+    s.add_slave(2, 100);
+    // The straggler clock of a job starts when its slave begins it, not when it was sent.
+    const Job *d = s.next_job(2, 5, true);
+    CHECK(d && d->dup_of == first.id);
+    deliver(s, first, nullptr, 5);  // slave 1 now renders b; the copy of a is cancelled
+    s.remove_slave(2);
+    s.add_slave(3, 100);
+    CHECK(s.next_job(3, 5.5, true) == nullptr);
+    const Job *e = s.next_job(3, 30, true);
+    CHECK(e && e->dup_of == bid);
+}
+
+static void test_repair()
+{
+    Schedule s(make_tiles(kArea, 80), 4, Division::Frame);
+    s.add_slave(1, 100);
+    s.plan(1);
+    CHECK(s.repair() == 0);     // the plan covers everything
+}
+
+// Random slaves of random speeds render, die, fail and join; the work always completes,
+// every missing cell stays covered, no cell is delivered twice without duplicates, and the
+// master holds few jobs and (frame division) few partial frames.
 static void test_simulation(Division div, unsigned seed)
 {
     std::mt19937 rng(seed);
-    std::vector<Rect> tiles = div == Division::Sequence ? std::vector<Rect>{Rect{0, 0, 160, 120}}
-                                                        : make_tiles(Rect{0, 0, 160, 120}, 80);
-    Schedule s(tiles, 17);
-    s.plan(div, 3);
-    std::map<int, int> running;     // slave -> unit
-    std::map<int, int> waiting;     // reserved slave -> unit being truncated
-    std::vector<int> idle = {1, 2, 3, 4};
-    int next_slave = 5, renders = 0, steps = 0;
-    std::map<std::pair<int, int>, int> rendered;
-    while (!s.finished() && steps++ < 10000) {
-        for (size_t k = 0; k < idle.size();) {
-            int tid = idle[k];
-            Action a = s.next_for(tid, steps, false);
-            if (a.kind == Action::Run) {
-                running[tid] = a.unit;
-                idle.erase(idle.begin() + long(k));
-            } else if (a.kind == Action::Split) {
-                waiting[tid] = a.unit;
-                // The busy slave answers at once, possibly past the requested frame.
-                int accepted = a.new_hi + int(rng() % 2);
-                accepted = std::min(accepted, s.unit(a.unit).hi);
-                int reserved = 0;
-                int tail = s.truncated(a.unit, accepted, reserved);
-                CHECK(reserved == tid);
-                waiting.erase(tid);
-                idle.erase(idle.begin() + long(k));
-                if (tail >= 0) {
-                    s.assign(tail, tid, steps);
-                    running[tid] = tail;
-                } else {
-                    idle.push_back(tid);
+    std::vector<Rect> tiles = div == Division::Sequence ? std::vector<Rect>{kArea}
+                                                        : make_tiles(kArea, 40);
+    const int nframes = 23;
+    Schedule s(tiles, nframes, div);
+    std::map<int, double> speed;
+    for (int slave = 1; slave <= 3; slave++) {
+        s.add_slave(slave, 100 * (1 + slave % 2));
+        speed[slave] = 1 + double(rng() % 3);
+    }
+    s.plan(div == Division::Frame ? 1 : 3);
+    std::map<int, std::vector<Job>> held;
+    int next_slave = 4, steps = 0, max_partial = 0;
+    std::map<std::pair<int, int>, int> delivered;
+    while (!s.finished() && steps++ < 20000) {
+        for (auto &kv : speed) {
+            int slave = kv.first;
+            while (held[slave].size() < 2) {
+                const Job *j = s.next_job(slave, steps, false);
+                if (!j)
                     break;
-                }
-            } else {
-                k++;
+                held[slave].push_back(*j);
             }
         }
-        CHECK(covered_everywhere(s));
-        if (running.empty())
+        CHECK(s.repair() == 0);
+        CHECK(int(s.jobs().size()) <= 2 * int(speed.size()));
+        std::vector<int> busy;
+        for (auto &kv : held)
+            if (!kv.second.empty())
+                busy.push_back(kv.first);
+        if (busy.empty())
             break;
-        auto it = running.begin();
-        std::advance(it, long(rng() % running.size()));
-        int tid = it->first, id = it->second;
-        if (rng() % 23 == 0) {
-            // The slave dies: its unit ends unfinished, a new slave joins.
-            s.unit_ended(id);
-            running.erase(it);
-            idle.push_back(next_slave++);
+        int slave = busy[rng() % busy.size()];
+        if (rng() % 10 >= speed[slave] * 3)
+            continue;   // slow slaves finish less often
+        Job j = held[slave].front();
+        held[slave].erase(held[slave].begin());
+        int roll = int(rng() % 40);
+        if (roll == 0) {
+            // The slave dies; a new one joins.
+            s.remove_slave(slave);
+            held.erase(slave);
+            speed.erase(slave);
+            s.add_slave(next_slave, 100 * next_slave);
+            speed[next_slave++] = 1 + double(rng() % 3);
             continue;
         }
-        Unit &u = s.unit(id);
-        std::vector<int> cancel;
-        rendered[{u.tile, u.next}]++;
-        renders++;
-        s.frame_arrived(id, u.next, cancel);
-        if (u.next > u.hi) {
-            s.unit_ended(id);
-            running.erase(it);
-            idle.push_back(tid);
+        if (roll == 1 && j.failures < Schedule::kRetries - 1) {
+            s.job_failed(j.id, 0);
+            continue;
         }
+        s.note_speed(slave, double(j.tiles.size()) * 1600, 1.0 / speed[slave]);
+        for (int t : deliver(s, j))
+            delivered[{j.index, t}]++;
+        int partial = 0;
+        for (int i = 0; i < nframes; i++) {
+            bool some = false;
+            for (int t = 0; t < s.tiles(); t++)
+                some = some || s.done(i, t);
+            partial += some && !s.frame_done(i);
+        }
+        max_partial = std::max(max_partial, partial);
     }
     CHECK(s.finished());
-    for (auto &kv : rendered)
+    CHECK(int(delivered.size()) == nframes * s.tiles());
+    for (auto &kv : delivered)
         CHECK(kv.second == 1);
+    // Frame division completes frames in order: the master holds a few partial frames.
+    if (div == Division::Frame)
+        CHECK(max_partial <= Schedule::kWindow + 2);
 }
 
 int main()
 {
-    test_plan_sequence();
-    test_plan_frame_and_hybrid();
+    test_sequence_ranges();
+    test_frame_division_keeps_tiles();
+    test_window_and_rebalance();
+    test_cheap_moves_balance_every_frame();
+    test_more_slaves_than_tiles();
     test_resume_skips_done_frames();
-    test_split_and_truncate();
-    test_dead_slave_requeues();
+    test_idle_slave_splits_range();
+    test_dead_slave_orphans();
+    test_failure_retries_elsewhere();
     test_straggler_duplicate();
-    test_skipped_cell_requeued();
+    test_queued_job_is_not_a_straggler();
     test_repair();
     for (unsigned seed = 1; seed <= 50; seed++) {
         test_simulation(Division::Sequence, seed);

@@ -12,6 +12,7 @@
 #include <time.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <cerrno>
 #include <climits>
 #include <cstdio>
@@ -222,16 +223,31 @@ std::string LineSplitter::rest()
 }
 
 bool start_child(const std::vector<std::string> &argv, const std::string &cwd, int nice_inc,
-                 Child &child, std::string &err)
+                 Child &child, std::string &err, const std::vector<std::pair<int, int>> &extra)
 {
-    int fds[2];
-    if (pipe2(fds, O_CLOEXEC) != 0)
+    // Everything the child needs is prepared here: after fork() the child of a threaded
+    // process may only make async-signal-safe calls (no allocation).
+    std::vector<char *> av;
+    for (const std::string &a : argv)
+        av.push_back(const_cast<char *>(a.c_str()));
+    av.push_back(nullptr);
+    const size_t kMaxExtra = 8;
+    int targets[kMaxExtra], sources[kMaxExtra];
+    size_t nextra = std::min(extra.size(), kMaxExtra);
+    for (size_t i = 0; i < nextra; i++) {
+        targets[i] = extra[i].first;
+        sources[i] = extra[i].second;
+    }
+    const std::string cd_failed = "fc: cannot enter directory " + cwd + "\n";
+    const std::string exec_failed = "fc: cannot run " + argv[0] + " (missing or not executable)\n";
+    int out[2];
+    if (pipe2(out, O_CLOEXEC) != 0)
         return sys_fail(err, "pipe2");
     pid_t parent = getpid();
     pid_t pid = fork();
     if (pid < 0) {
-        close(fds[0]);
-        close(fds[1]);
+        close(out[0]);
+        close(out[1]);
         return sys_fail(err, "fork");
     }
     if (pid == 0) {
@@ -246,29 +262,35 @@ bool start_child(const std::vector<std::string> &argv, const std::string &cwd, i
         sigset_t none;
         sigemptyset(&none);
         sigprocmask(SIG_SETMASK, &none, nullptr);
-        dup2(fds[1], 1);
-        dup2(fds[1], 2);
+        // Move the inherited descriptors out of the way first: a source may sit on a number
+        // another one is mapped to.
+        for (size_t i = 0; i < nextra; i++)
+            if ((sources[i] = fcntl(sources[i], F_DUPFD_CLOEXEC, 100)) < 0)
+                _exit(126);
+        for (size_t i = 0; i < nextra; i++)
+            if (dup2(sources[i], targets[i]) < 0)
+                _exit(126);
+        dup2(out[1], 1);
+        dup2(out[1], 2);
         int devnull = open("/dev/null", O_RDONLY);
         if (devnull >= 0)
             dup2(devnull, 0);
         if (nice_inc > 0)
             setpriority(PRIO_PROCESS, 0, nice_inc);
         if (!cwd.empty() && chdir(cwd.c_str()) != 0) {
-            dprintf(2, "fc: cannot enter directory %s: %s\n", cwd.c_str(), strerror(errno));
+            ssize_t w = write(2, cd_failed.data(), cd_failed.size());
+            (void)w;
             _exit(126);
         }
-        std::vector<char *> av;
-        for (const std::string &a : argv)
-            av.push_back(const_cast<char *>(a.c_str()));
-        av.push_back(nullptr);
         execv(av[0], av.data());
-        dprintf(2, "fc: cannot run %s: %s\n", av[0], strerror(errno));
+        ssize_t w = write(2, exec_failed.data(), exec_failed.size());
+        (void)w;
         _exit(127);
     }
-    close(fds[1]);
-    fcntl(fds[0], F_SETFL, fcntl(fds[0], F_GETFL) | O_NONBLOCK);
+    close(out[1]);
+    fcntl(out[0], F_SETFL, fcntl(out[0], F_GETFL) | O_NONBLOCK);
     child.pid = pid;
-    child.fd = fds[0];
+    child.fd = out[0];
     return true;
 }
 

@@ -93,16 +93,17 @@ class CoordinatorRun:
             env.update(extra)
         return env
 
-    def argv(self, args, renderer=True):
-        argv = [FC_MASTER]
+    def argv(self, args, renderer=True, prefix=()):
+        argv = list(prefix) + [FC_MASTER]
         if renderer:
             argv += ["--povray", coordinator_renderer()]
         return argv + list(args)
 
-    def run(self, args, cwd=COORDINATOR_SCENES, timeout=90, renderer=True, env=None):
-        """Run fc-master to completion; returns CompletedProcess (text output). A run that
-        does not end in time is interrupted and reported with its protocol trace."""
-        argv = self.argv(args, renderer)
+    def run(self, args, cwd=COORDINATOR_SCENES, timeout=90, renderer=True, env=None, prefix=()):
+        """Run fc-master to completion (under the command prefix, if any); returns
+        CompletedProcess (text output). A run that does not end in time is interrupted and
+        reported with its protocol trace."""
+        argv = self.argv(args, renderer, prefix)
         p = subprocess.Popen(argv, cwd=cwd, env=self.env(env), stdout=subprocess.PIPE,
                              stderr=subprocess.PIPE, text=True)
         self.procs.append(p)

@@ -13,7 +13,8 @@ import time
 import numpy as np
 import pytest
 
-from conftest import TOP, coordinator_cmdline, coordinator_stats, load_rgb
+from conftest import (COORDINATOR_SCENES, TOP, coordinator_cmdline, coordinator_renderer,
+                      coordinator_stats, load_rgb)
 
 pytestmark = pytest.mark.usefixtures("coordinator_build")
 
@@ -103,43 +104,66 @@ def test_division_matches_single_process(coordinator, coordinator_references, tm
     assert s["virtual_machine"] == "private"
     assert s["frames_total"] == 8 and s["frames_rendered"] == 8
     assert [h["slaves"] for h in s["hosts"]] == [slaves]
-    ntiles = 1 if division == "sequence" else 4     # 160x120 in 80x80 tiles
+    ntiles = 1 if division == "sequence" else 6     # 160x120 in tiles of 64 (the default)
     for f in s["frames"]:
         # Invariant: each frame is assembled from each tile exactly once, with its statistics.
         assert sorted(t["tile"] for t in f["tiles"]) == list(range(ntiles))
         assert f["rays"] > 0 and f["host"] and f["time"] >= 0
-    for u in s["units"]:
-        assert u["status"] in ("finished", "truncated", "cancelled", "stopped")
-        assert u["host"] and u["first"] <= u["last"]
+        # Invariant: one parse per slave and frame at most, however many tiles it holds.
+        assert 1 <= f["parses"] <= slaves, f
+    for j in s["jobs"]:
+        assert j["status"] in ("done", "cancelled", "duplicate", "stopped"), j
+        assert j["host"] and j["tiles"] and j["parse"] >= 0
 
 
-def test_antialiasing_method2_tiles_match(coordinator, coordinator_references, tmp_path):
-    opts = ["+W160", "+H120", "+KFI1", "+KFF4", "+A0.1", "+AM2"]
+# Antialiasing method 1 traces a border around each 32-pixel render block, so a pixel depends
+# on where block edges fall; jitter, method 2 and dithering have their own state. Tiles are
+# rendered on the whole area's block grid and dithering runs on the assembled frame, so every
+# combination equals one process. Slave counts cycle through 1-3 to keep the module fast.
+AA_SETTINGS = {
+    "no-aa": ["-A"],
+    "am1": ["+A0.1", "+AM1"],
+    "am1-jitter": ["+A0.1", "+AM1", "+J0.8"],
+    "am2": ["+A0.1", "+AM2", "+R2"],
+    "am2-jitter": ["+A0.05", "+AM2", "+R2", "+J"],
+}
+
+
+@pytest.mark.parametrize("tile", [80, 37])
+@pytest.mark.parametrize("aa", sorted(AA_SETTINGS))
+@pytest.mark.parametrize("division", ["frame", "hybrid"])
+def test_tiles_exact_under_every_antialiasing(coordinator, coordinator_references, tmp_path,
+                                              division, aa, tile):
+    opts = ["+W160", "+H120", "+KFI1", "+KFF3"] + AA_SETTINGS[aa]
+    slaves = 1 + (sorted(AA_SETTINGS).index(aa) + tile) % 3
     out = tmp_path / "out"
-    r = coordinator.run(["--no-fc", "--quiet", "--division", "frame", "--slaves", "2",
+    r = coordinator.run(["--no-fc", "--quiet", "--division", division, "--tile", str(tile),
+                         "--slaves", str(slaves), SCENE] + opts + ["-o", str(out)])
+    assert r.returncode == 0, r.stderr
+    assert_same_frames(out, coordinator_references.frames(SCENE, opts))
+
+
+@pytest.mark.parametrize("method", ["fs", "d1", "d2", "b4"])
+@pytest.mark.parametrize("division", ["frame", "sequence"])
+def test_dithering_exact(coordinator, coordinator_references, tmp_path, division, method):
+    # Error diffusion (d1, d2, fs) runs over the whole image; Bayer (b4) is per pixel.
+    opts = ["+W160", "+H120", "+KFI1", "+KFF2", "+A0.1", "+AM1", "Dither=on",
+            "Dither_Method=" + method]
+    out = tmp_path / "out"
+    r = coordinator.run(["--quiet", "--division", division, "--tile", "37", "--slaves", "3",
                          SCENE] + opts + ["-o", str(out)])
     assert r.returncode == 0, r.stderr
     assert_same_frames(out, coordinator_references.frames(SCENE, opts))
 
 
-def test_antialiasing_method1_block_aligned_tiles_match(coordinator, coordinator_references,
-                                                        tmp_path):
-    # +AM1 works on 32-pixel render blocks: tiles that are multiples of 32 keep pixels exact.
-    opts = ["+W160", "+H120", "+KFI1", "+KFF3", "+A0.1", "+AM1"]
+def test_frame_coherence_tiles_exact(coordinator, coordinator_references, tmp_path):
+    # fc keeps each slave's tiles coherent from frame to frame, under AA method 1 too.
+    opts = ["+W160", "+H120", "+KFI1", "+KFF8", "+A0.1", "+AM1"]
     out = tmp_path / "out"
-    r = coordinator.run(["--no-fc", "--division", "hybrid", "--tile", "64", "--slaves", "2",
+    r = coordinator.run(["--quiet", "--division", "frame", "--tile", "48", "--slaves", "2",
                          SCENE] + opts + ["-o", str(out)])
     assert r.returncode == 0, r.stderr
-    assert "antialiasing method 1" not in r.stderr
     assert_same_frames(out, coordinator_references.frames(SCENE, opts))
-
-
-def test_antialiasing_method1_unaligned_tiles_warn(coordinator, tmp_path):
-    opts = ["+W160", "+H120", "+KFI1", "+KFF2", "+A0.1", "+AM1"]
-    r = coordinator.run(["--no-fc", "--quiet", "--division", "frame", "--slaves", "1",
-                         SCENE] + opts + ["-o", str(tmp_path / "out")])
-    assert r.returncode == 0, r.stderr
-    assert r.stderr.count("antialiasing method 1") == 1
 
 
 def test_ini_file_renders_unchanged(coordinator, coordinator_references, tmp_path):
@@ -157,7 +181,8 @@ def test_ini_file_renders_unchanged(coordinator, coordinator_references, tmp_pat
     ["+W96", "+H72", "+KFI1", "+KFF9", "+KC"],                       # cyclic: digits of 10
     ["+W96", "+H72", "+KFI3", "+KFF11", "Frame_Step=3"],             # frames 3, 6, 9
     ["+W96", "+H72", "+KFI98", "+KFF101"],                           # names widen to 3 digits
-], ids=["subset", "cyclic", "step", "digits"])
+    ["+W96", "+H72", "+KFI1", "+KFF12", "Subset_End_Frame=0.5"],     # half: moving01..06
+], ids=["subset", "cyclic", "step", "digits", "fraction"])
 def test_frame_ranges_and_names_follow_povray(coordinator, coordinator_references, tmp_path,
                                              opts):
     out = tmp_path / "out"
@@ -210,9 +235,10 @@ def test_joins_running_virtual_machine(coordinator, coordinator_references, tmp_
 
 # --- faults ----------------------------------------------------------------------------------
 
-def test_resume_after_killing_master(coordinator, coordinator_references, tmp_path):
+@pytest.mark.parametrize("division", ["sequence", "frame"])
+def test_resume_after_killing_master(coordinator, coordinator_references, tmp_path, division):
     out = tmp_path / "out"
-    args = ["--no-fc", "--quiet", "--division", "sequence", "--slaves", "1", SCENE] + SLOW + \
+    args = ["--no-fc", "--quiet", "--division", division, "--slaves", "2", SCENE] + SLOW + \
            ["-o", str(out)]
     ref = coordinator_references.frames(SCENE, SLOW)
     p = coordinator.start(args)
@@ -234,6 +260,129 @@ def test_resume_after_killing_master(coordinator, coordinator_references, tmp_pa
     # Invariant: the second run renders only the frames that were missing.
     assert s["frames_resumed"] == len(before)
     assert s["frames_rendered"] == len(ref) - len(before)
+    assert coordinator.wait_no_processes() == []
+
+
+def test_frames_complete_in_order_while_rendering(coordinator, coordinator_references,
+                                                  tmp_path):
+    # Frame division: the slaves divide each frame, so frames are written one after the other
+    # from the start, and the master holds a few frames, however many the animation has.
+    out = tmp_path / "out"
+    stats = tmp_path / "stats.json"
+    opts = ["+W160", "+H120", "+KFI1", "+KFF24", "+A0.1", "+AM2", "+R3"]
+    r = coordinator.run(["--no-fc", "--quiet", "--division", "frame", "--tile", "40",
+                         "--slaves", "2", "--stats", str(stats), SCENE] + opts +
+                        ["-o", str(out)])
+    assert r.returncode == 0, r.stderr
+    assert_same_frames(out, coordinator_references.frames(SCENE, opts))
+    s = coordinator_stats(stats)
+    assert s["max_frames_held"] <= 6, s["max_frames_held"]
+    finished = [f["finished_at"] for f in s["frames"]]
+    assert finished[0] < s["elapsed"] / 3, finished
+    # Nearly in order: no frame is finished long after the frames that follow it.
+    for k in range(len(finished) - 3):
+        assert finished[k] <= finished[k + 3], finished
+
+
+def renderer_wrapper(tmp_path, failures):
+    """A renderer that fails (exit status 3, as a broken host would) the first `failures`
+    renders fc-slave starts, then runs povray-fc; failures < 0: always."""
+    counter = tmp_path / "failures"
+    script = tmp_path / "flaky-povray"
+    real = coordinator_renderer()
+    script.write_text(f"""#!/bin/sh
+case "$*" in *Frame_Control=*)
+  n=$(flock {counter}.lock sh -c 'n=$(cat {counter} 2>/dev/null || echo 0); n=$((n + 1)); echo $n > {counter}; echo $n')
+  if [ {failures} -lt 0 ] || [ "$n" -le {failures} ]; then echo "simulated host failure" >&2; exit 3; fi
+esac
+exec {real} "$@"
+""")
+    script.chmod(0o755)
+    return script
+
+
+def test_slave_failure_is_retried(coordinator, coordinator_references, tmp_path):
+    out = tmp_path / "out"
+    wrapper = renderer_wrapper(tmp_path, 2)
+    r = coordinator.run(["--no-fc", "--povray", str(wrapper), "--division", "frame",
+                         "--slaves", "2", SCENE] + SMALL + ["-o", str(out)], renderer=False)
+    assert r.returncode == 0, r.stderr
+    # Invariant: a host's failure is not the scene's: the work is done again, with a warning.
+    assert r.stderr.count("trying again") == 2, r.stderr
+    assert_same_frames(out, coordinator_references.frames(SCENE, SMALL))
+    assert coordinator.wait_no_processes() == []
+
+
+def test_failing_host_is_left_out(coordinator, tmp_path):
+    out = tmp_path / "out"
+    wrapper = renderer_wrapper(tmp_path, -1)
+    r = coordinator.run(["--no-fc", "--povray", str(wrapper), "--division", "frame",
+                         "--slaves", "2", SCENE] + SMALL + ["-o", str(out)], renderer=False)
+    # Three failures leave the only host out; nothing is left to render with.
+    assert r.returncode == 1
+    assert "left out" in r.stderr and "simulated host failure" in r.stderr, r.stderr
+    assert os.listdir(out) == []
+    assert coordinator.wait_no_processes() == []
+
+
+SHELLOUT_INI = """\
+Pre_Scene_Command=sh -c "echo pre-scene %n >> {log}"
+Pre_Frame_Command=sh -c "echo pre-frame %n %k >> {log}"
+Post_Frame_Command=sh -c "echo post-frame %n >> {log}"
+Post_Scene_Command=sh -c "echo post-scene %n >> {log}"
+"""
+
+
+def allow_shellouts(tmp_path):
+    """A command prefix that runs its command in a private mount namespace where povray.conf
+    allows shell-outs (Debian's forbids them; the machine's own file stays untouched)."""
+    conf = tmp_path / "povray.conf"
+    text = open("/etc/povray/3.7/povray.conf").read()
+    conf.write_text(text.replace("\nforbidden", "\nallowed"))
+    return ["unshare", "-m", "--", "sh", "-c",
+            'mount --bind "$0" /etc/povray/3.7/povray.conf && exec "$@"', str(conf)]
+
+
+@pytest.mark.skipif(os.geteuid() != 0, reason="needs root for a private mount namespace")
+def test_shellouts_run_once_as_in_one_process(coordinator, tmp_path):
+    prefix = allow_shellouts(tmp_path)
+    opts = ["+W64", "+H48", "+KFI1", "+KFF4"]
+    single_log, master_log = tmp_path / "single.log", tmp_path / "master.log"
+    (tmp_path / "single.ini").write_text(SHELLOUT_INI.format(log=single_log))
+    (tmp_path / "master.ini").write_text(SHELLOUT_INI.format(log=master_log))
+    single = subprocess.run(prefix + [coordinator_renderer(), SCENE, str(tmp_path / "single.ini"),
+                                      "-D", "-V", "+O%s/s" % tmp_path] + opts,
+                            cwd=COORDINATOR_SCENES, capture_output=True, text=True, timeout=60)
+    assert single.returncode == 0, single.stderr
+    out = tmp_path / "out"
+    r = coordinator.run(["--quiet", "--division", "frame", "--tile", "16", "--slaves", "3",
+                         SCENE, str(tmp_path / "master.ini")] + opts + ["-o", str(out)],
+                        prefix=prefix)
+    assert r.returncode == 0, r.stderr
+    want = single_log.read_text().splitlines()
+    got = master_log.read_text().splitlines()
+    # Invariant: each command runs as often as in one process (scene once, frame once per
+    # frame, never per tile or slave), with the same frame number and clock.
+    assert sorted(got) == sorted(want), (got, want)
+    assert got[0] == "pre-scene 1" and got[-1] == "post-scene 4"
+    for n in range(1, 5):
+        assert got.index("post-frame %d" % n) > got.index("pre-frame %d %s" % (
+            n, next(w.split()[2] for w in want if w.startswith("pre-frame %d " % n))))
+    assert len(os.listdir(out)) == 4
+    assert coordinator.wait_no_processes() == []
+
+
+def test_forbidden_shellout_keeps_its_return_action(coordinator, tmp_path):
+    # Debian's povray.conf forbids shell-outs; POV-Ray then counts the command as failed,
+    # and Pre_Scene_Return=q makes it quit before rendering (exit status 0).
+    ini = tmp_path / "quit.ini"
+    ini.write_text("Pre_Scene_Command=touch %s\nPre_Scene_Return=q\n" % (tmp_path / "ran"))
+    out = tmp_path / "out"
+    r = coordinator.run(["--no-fc", SCENE, str(ini)] + SMALL + ["-o", str(out)])
+    assert r.returncode == 0, r.stderr
+    assert "quit rendering" in r.stderr and "prohibited" in r.stderr
+    assert not (tmp_path / "ran").exists()
+    assert not out.exists() or os.listdir(out) == []
     assert coordinator.wait_no_processes() == []
 
 

@@ -162,7 +162,7 @@ def test_all_hosts_render(coordinator, coordinator_references, vm, tmp_path, div
     names = {h["name"]: h for h in s["hosts"]}
     assert set(names) == {vm.env["PVM_NETNS_MASTER"]} | set(vm.hosts)
     for h in names.values():
-        assert h["slaves"] >= 1 and h["units"] >= 1, s["hosts"]
+        assert h["slaves"] >= 1 and h["jobs"] >= 1, s["hosts"]
     # No slave is left on any host once the master is done.
     deadline = time.time() + 10
     while time.time() < deadline and any(program(p) == "fc-slave" for h in vm.hosts
@@ -210,7 +210,7 @@ def test_host_added_while_rendering(coordinator, coordinator_references, vm, tmp
     assert_same(out, coordinator_references.frames(SCENE, SLOW))
     hosts = {h["name"]: h for h in coordinator_stats(stats)["hosts"]}
     # Invariant: a host added while rendering gets slaves and work.
-    assert hosts[late]["units"] >= 1, hosts
+    assert hosts[late]["jobs"] >= 1, hosts
 
 
 def test_private_machine_from_hostfile(coordinator, coordinator_references, netns_hosts,

@@ -1,0 +1,142 @@
+"""povray-fc's frame channel and frame control (patches 0020-0022), without the coordinator.
+
+A render with Frame_Channel writes one record per frame (a header line, then the pixels of
+the frame's rectangles as the Targa writer encodes them) and no image file; with
+Frame_Control it renders, frame by frame, only what the control lines ask for. Pixels are
+compared with a plain render of the same frames (OpenImageIO).
+"""
+import subprocess
+
+import numpy as np
+import pytest
+
+from fcutil import POVRAY_FC, SCENES, read_pixels
+
+SCENE = SCENES / "coordinator-test" / "moving.pov"
+ANIMATION = ["+W160", "+H120", "+KFI1", "+KFF4"]
+
+
+def povray(args, tmp_path):
+    argv = [str(POVRAY_FC), f"+I{SCENE}", "-D", "-P", "-V", "+FT", "-UA"] + args
+    return subprocess.run(argv, cwd=tmp_path, capture_output=True, text=True, timeout=120,
+                          stdin=subprocess.DEVNULL)
+
+
+def records(path):
+    """[(fields, rects, payload)] of a frame channel file."""
+    data = path.read_bytes()
+    out, pos = [], 0
+    while pos < len(data):
+        nl = data.index(b"\n", pos)
+        words = data[pos:nl].decode().split()
+        assert words[:2] == ["FCFRAME", "1"], words
+        fields, rects, i = {}, [], 2
+        while i < len(words):
+            key, value = words[i].split("=")
+            if key == "rects":
+                rects = [tuple(int(v) for v in words[i + 1 + k].split(",")) for k in range(int(value))]
+                i += int(value)
+            else:
+                fields[key] = value
+            i += 1
+        size = int(fields["bytes"])
+        out.append((fields, rects, data[nl + 1:nl + 1 + size]))
+        pos = nl + 1 + size
+    return out
+
+
+def reference(tmp_path, options):
+    """A plain render of the same frames: {frame: pixels}."""
+    ref = tmp_path / "ref"
+    ref.mkdir(exist_ok=True)
+    r = povray(ANIMATION + options + [f"+O{ref}/f"], tmp_path)
+    assert r.returncode == 0, r.stderr
+    return {n: read_pixels(ref / f"f{n}.tga")[:, :, :3] for n in range(1, 5)}
+
+
+def channel_render(tmp_path, options, control):
+    (tmp_path / "control").write_text(control)
+    r = povray(ANIMATION + options + [f"+O{tmp_path}/x", f"Frame_Channel={tmp_path}/channel",
+                                      f"Frame_Control={tmp_path}/control"], tmp_path)
+    return r
+
+
+@pytest.mark.parametrize("options", [["-A"], ["+A0.1", "+AM1"], ["+A0.05", "+AM1", "+J0.7"],
+                                     ["+A0.1", "+AM2", "+R2", "+J"]],
+                         ids=["no-aa", "am1", "am1-jitter", "am2-jitter"])
+def test_rectangles_equal_a_full_render(tmp_path, options):
+    # Rectangles that do not line up with the 32-pixel render blocks, frames skipped.
+    control = "render 1 37,0,117,80 117,80,160,120\nrender 3 0,13,33,120\nrender 4\n"
+    r = channel_render(tmp_path, options, control)
+    assert r.returncode == 0, r.stderr
+    recs = records(tmp_path / "channel")
+    ref = reference(tmp_path, options)
+    # Invariant: one record per frame asked for, in order, and no image file.
+    assert [int(f["frame"]) for f, _, _ in recs] == [1, 3, 4]
+    assert not list(tmp_path.glob("x*.tga"))
+    assert recs[2][1] == [(0, 0, 160, 120)]     # no rectangles: the whole image
+    for fields, rects, payload in recs:
+        assert fields["encoding"] == "rgb8" and int(fields["rays"]) > 0
+        assert float(fields["parse"]) >= 0 and float(fields["trace"]) > 0
+        want = ref[int(fields["frame"])]
+        offset = 0
+        for x0, y0, x1, y1 in rects:
+            n = (x1 - x0) * (y1 - y0) * 3
+            got = np.frombuffer(payload[offset:offset + n], np.uint8).reshape(y1 - y0, x1 - x0, 3)
+            offset += n
+            # Invariant: the rectangle's pixels equal the full render's.
+            assert np.array_equal(got, want[y0:y1, x0:x1]), (fields["frame"], (x0, y0, x1, y1))
+        assert offset == len(payload)
+
+
+def test_fewer_rays_for_fewer_rectangles(tmp_path):
+    r = channel_render(tmp_path, ["-A"], "render 1\nrender 2 0,0,32,32\n")
+    assert r.returncode == 0, r.stderr
+    (whole, _, _), (corner, _, _) = records(tmp_path / "channel")
+    # Only the blocks meeting the rectangle are traced.
+    assert 0 < int(corner["rays"]) < int(whole["rays"]) / 4
+
+
+def test_stop_and_end_of_file_end_the_render(tmp_path):
+    r = channel_render(tmp_path, ["-A"], "render 2\nstop\nrender 3\n")
+    assert r.returncode == 0, r.stderr
+    assert [int(f["frame"]) for f, _, _ in records(tmp_path / "channel")] == [2]
+    r = channel_render(tmp_path, ["-A"], "render 1\n")
+    assert r.returncode == 0, r.stderr
+    assert len(records(tmp_path / "channel")) == 1
+
+
+@pytest.mark.parametrize("control,message", [
+    ("render 2\nrender 1\n", "Frame control asked for frame 1, but frame 3 is next"),
+    ("rendr 1\n", "Frame control: cannot understand 'rendr 1'"),
+    ("render 1 10,10,5,20\n", "Frame control: bad rectangle '10,10,5,20'"),
+], ids=["passed", "verb", "rectangle"])
+def test_bad_control_lines_fail_with_a_message(tmp_path, control, message):
+    r = channel_render(tmp_path, ["-A"], control)
+    assert r.returncode != 0
+    assert message in r.stdout + r.stderr
+
+
+def test_unusable_channel_is_an_error(tmp_path):
+    r = povray(ANIMATION + [f"+O{tmp_path}/x", f"Frame_Channel={tmp_path}/no/such/dir"], tmp_path)
+    assert r.returncode != 0
+    assert f"Cannot open frame channel '{tmp_path}/no/such/dir'" in r.stdout + r.stderr
+
+
+def test_diffusion_dithering_sends_values_and_quantizer(tmp_path):
+    r = channel_render(tmp_path, ["-A", "Dither=on"], "render 1 0,0,50,40\n")
+    assert r.returncode == 0, r.stderr
+    [(fields, rects, payload)] = records(tmp_path / "channel")
+    assert fields["encoding"] == "rgbf"
+    # 3 floats a pixel, then the method (Floyd-Steinberg = 3), 255 thresholds, 256 levels.
+    assert len(payload) == 50 * 40 * 12 + 4 + 255 * 4 + 256 * 4
+    table = payload[50 * 40 * 12:]
+    assert int.from_bytes(table[:4], "little") == 3
+    thresholds = np.frombuffer(table[4:4 + 255 * 4], np.float32)
+    levels = np.frombuffer(table[4 + 255 * 4:], np.float32)
+    assert np.all(np.diff(thresholds) > 0) and levels[0] == 0 and levels[255] == 1
+    # Quantized without dithering, the values are at most one level from the dithered file.
+    values = np.frombuffer(payload[:50 * 40 * 12], np.float32).reshape(40, 50, 3)
+    plain = np.searchsorted(thresholds, values, side="right")
+    dithered = reference(tmp_path, ["-A", "Dither=on"])[1][:40, :50].astype(int)
+    assert np.abs(plain - dithered).max() <= 1
