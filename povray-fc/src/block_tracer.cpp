@@ -114,6 +114,7 @@ bool BlockTracer::Begin(std::uint32_t serial, int left, int top, int right, int 
     next_.pixels.assign(area * 5, 0.0f);
     tracedPixels_.assign(area, 0);
 
+    plan.store->Touch(serial);
     old_ = plan.store->Find(serial);
     if (old_ && (!old_->Covers(left, top, right, bottom) || old_->opaque != !record_)) old_ = nullptr;
     if (old_ && plan.everythingDirty) old_ = nullptr;

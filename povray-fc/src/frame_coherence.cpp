@@ -191,6 +191,8 @@ void FrameCoherence::EndFrame(std::uint64_t raysTraced) {
         current_.reused = counters_.reusedPixels.load();
         current_.samplesTraced = counters_.tracedSamples.load();
         current_.samplesReused = counters_.reusedSamples.load();
+        // Blocks this frame did not render missed its changes.
+        if (store_) store_->ForgetUntouched();
         current_.storeBytes = store_ ? store_->MemoryBytes() : 0;
         if (plan_.mode == FramePlan::Mode::kRecord) {
             const double taken = double(current_.samplesTraced + current_.samplesReused);

@@ -343,3 +343,43 @@ TEST_F(FrameCoherenceRun, UnboundedLooseRayNotHeldByTheLooseBoxStillSeesAChange)
 
 }  // namespace
 }  // namespace povrayfc
+
+namespace povrayfc {
+namespace {
+
+// A block left out of a frame (a renderer told to render some blocks only) missed that
+// frame's changes: it must be traced again when it is rendered later, not reused.
+TEST_F(FrameCoherenceRun, BlockLeftOutOfAFrameIsTracedAgainLater) {
+    FrameCoherence &fc = FrameCoherence::Get();
+    auto frame = [&](int n, const ToyScene &scene, bool renderSecondBlock) {
+        PublishSceneSignature(kScene, Signature(scene));
+        fc.BeginFrame(true, ToySetup(n), kScene, {});
+        BlockTracer tracer(fc.Plan());
+        int traced = 0;
+        for (std::uint32_t serial = 0; serial < 2; ++serial) {
+            if (serial == 1 && !renderSecondBlock) continue;
+            const int left = int(serial) * kBlock;
+            if (tracer.Begin(serial, left, 0, left + kBlock - 1, kBlock - 1)) continue;
+            for (int y = 0; y < kBlock; ++y)
+                for (int x = left; x < left + kBlock; ++x) {
+                    float c[5];
+                    if (tracer.Reuse(x, y, c)) continue;
+                    tracer.BeginSample();
+                    TraceToy(scene, x, y, c);
+                    tracer.EndSample(x, y, c);
+                    tracer.SetPixel(x, y, c);
+                    ++traced;
+                }
+            tracer.End();
+        }
+        fc.EndFrame(0);
+        return traced;
+    };
+    frame(1, Frame(5.0), true);
+    frame(2, Frame(5.5), false);  // the mover crosses block 1, which is not rendered
+    // Invariant: block 1's record is gone, so all of it is traced.
+    EXPECT_EQ(frame(3, Frame(5.5), true), kBlock * kBlock);
+}
+
+}  // namespace
+}  // namespace povrayfc

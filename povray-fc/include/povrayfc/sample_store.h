@@ -67,7 +67,7 @@ struct BlockRecord {
 class SampleStore {
   public:
     SampleStore() = default;
-    explicit SampleStore(std::size_t blocks) : blocks_(blocks) {}
+    explicit SampleStore(std::size_t blocks) : blocks_(blocks), touched_(blocks, 0) {}
 
     std::size_t BlockCount() const { return blocks_.size(); }
     // The stored record of block `serial`, or nullptr (never rendered, or out of range).
@@ -81,12 +81,27 @@ class SampleStore {
         for (auto &b : blocks_) b.reset();
     }
 
+    // Block `serial` was rendered (or reused) this frame. From the thread rendering it.
+    void Touch(std::size_t serial) {
+        if (serial < touched_.size()) touched_[serial] = 1;
+    }
+    // Forgets every block no thread touched this frame (a renderer told to render only
+    // some blocks, e.g. a distributed slave's tiles): its record missed this frame's
+    // changes, so it must not be reused later. Between frames.
+    void ForgetUntouched() {
+        for (std::size_t i = 0; i < blocks_.size(); ++i) {
+            if (!touched_[i]) blocks_[i].reset();
+            touched_[i] = 0;
+        }
+    }
+
     std::size_t MemoryBytes() const;
     std::size_t SampleCount() const;
     std::size_t SegmentCount() const;
 
   private:
     std::vector<std::unique_ptr<BlockRecord>> blocks_;
+    std::vector<std::uint8_t> touched_;  // per block, this frame
 };
 
 }  // namespace povrayfc
