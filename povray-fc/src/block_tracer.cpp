@@ -1,6 +1,8 @@
 // BlockTracer: deciding a block's clean samples, serving them, recording the traced ones.
 #include "povrayfc/block_tracer.h"
 
+#include "povrayfc/block_hulls.h"
+
 #include <algorithm>
 #include <cmath>
 #include <cstring>
@@ -22,71 +24,13 @@ std::uint32_t KeyHash(double x, double y) {
     return std::uint32_t(h >> 32);
 }
 
-// Which hulls each fan of a record may reach: fanHulls[f] has bit h set when fan f's cone
-// may meet hull h (all bits when there are too many hulls to say). A segment of fan f
-// then needs testing against those hulls only.
-using HullMask = std::uint64_t;
-constexpr HullMask kAllHulls = ~HullMask(0);
-
-bool FansHit(const BlockRecord &record, const ChangeIndex &changes, HullMask *fanHulls) {
-    bool any = false;
-    Hull all;
-    all.box = changes.Bounds();
-    const bool perHull = !changes.HasGrid() && changes.HullCount() <= 64;
-    for (std::size_t f = 0; f < record.fans.fans.size(); ++f) {
-        const SegmentFan &fan = record.fans.fans[f];
-        HullMask mask = 0;
-        if (FanMayMeet(fan, all)) {
-            if (!perHull) {
-                mask = kAllHulls;
-            } else {
-                for (std::size_t h = 0; h < changes.HullCount(); ++h)
-                    if (FanMayMeet(fan, changes.Hulls()[h])) mask |= HullMask(1) << h;
-            }
-        }
-        fanHulls[f] = mask;
-        any |= mask != 0;
-    }
-    return any;
-}
-
-// Whether a change may come near the loose segments of finite length (their box, widened
-// by the rounding margin of any segment inside it).
-bool LooseBoxHit(const BlockRecord &record, const ChangeIndex &changes) {
-    const Box &b = record.fans.looseBox;
-    if (b.Empty()) return false;
-    const Box &u = changes.Bounds();
-    if (!b.IsFinite() || !u.IsFinite()) return true;
-    double scale = 0;
-    for (int a = 0; a < 3; ++a)
-        scale = std::max({scale, std::fabs(b.lo[a]), std::fabs(b.hi[a]), std::fabs(u.lo[a]), std::fabs(u.hi[a])});
-    const double m = 0x1p-16 * scale + 1e-30;  // > 2 * SegmentMargin for any segment in b, hull in u
-    return b.lo.x <= u.hi.x + m && u.lo.x <= b.hi.x + m && b.lo.y <= u.hi.y + m && u.lo.y <= b.hi.y + m &&
-           b.lo.z <= u.hi.z + m && u.lo.z <= b.hi.z + m;
-}
-
 bool SampleIsDirty(const StoredSample &s, const BlockRecord &record, const ChangeIndex &changes,
-                   const HullMask *fanHulls, bool looseBoxHit) {
+                   const BlockHulls &reach) {
     if (s.segmentCount == StoredSample::kEverything) return true;
     const Segment *segment = record.segments.data() + s.firstSegment;
     const std::uint8_t *fanOf = record.fanOf.data() + s.firstSegment;
-    for (std::uint32_t i = 0; i < s.segmentCount; ++i) {
-        if (fanOf[i] == BlockFans::kLoose) {
-            if (!looseBoxHit && InLooseBox(segment[i])) continue;
-            if (changes.MayMeet(segment[i])) return true;
-            continue;
-        }
-        HullMask mask = fanHulls[fanOf[i]];
-        if (mask == 0) continue;
-        // The union test first: it rejects most segments of a wide fan at the price of one.
-        if (!changes.MayMeetUnion(segment[i])) continue;
-        if (mask == kAllHulls) {
-            if (changes.MayMeet(segment[i])) return true;
-            continue;
-        }
-        for (; mask; mask &= mask - 1)
-            if (MayMeet(segment[i], changes.Hulls()[std::size_t(__builtin_ctzll(mask))])) return true;
-    }
+    for (std::uint32_t i = 0; i < s.segmentCount; ++i)
+        if (reach.SegmentMayMeet(segment[i], fanOf[i], changes)) return true;
     return false;
 }
 
@@ -139,14 +83,12 @@ bool BlockTracer::Begin(std::uint32_t serial, int left, int top, int right, int 
         old_->fans = BuildFans(old_->segments.data(), old_->fanOf, old_->apexes);
         old_->fansBuilt = true;
     }
-    HullMask fanHulls[BlockFans::kMaxFans] = {0};
-    const bool fansHit = FansHit(*old_, *plan.changes, fanHulls);
-    const bool looseHit = LooseBoxHit(*old_, *plan.changes);
+    const BlockHulls reach = FindBlockHulls(*old_, *plan.changes);
     bool anyDirty = false;
-    if (fansHit || looseHit || old_->fans.looseUnbounded || old_->hasEverything) {
+    if (reach.Any() || old_->fans.looseUnbounded || old_->hasEverything) {
         oldDirty_.resize(n);
         for (std::size_t i = 0; i < n; ++i) {
-            oldDirty_[i] = SampleIsDirty(old_->samples[i], *old_, *plan.changes, fanHulls, looseHit);
+            oldDirty_[i] = SampleIsDirty(old_->samples[i], *old_, *plan.changes, reach);
             anyDirty |= oldDirty_[i] != 0;
         }
     }

@@ -1,0 +1,46 @@
+// BlockHulls: which of a frame's changed hulls can reach one stored render block, found
+// from the block's cones and loose box before any of its segments is tested.
+#ifndef POVRAYFC_BLOCK_HULLS_H
+#define POVRAYFC_BLOCK_HULLS_H
+
+#include <cstddef>
+#include <cstdint>
+
+#include "povrayfc/change_index.h"
+#include "povrayfc/sample_store.h"
+#include "povrayfc/segment.h"
+
+namespace povrayfc {
+
+// A change of hundreds of objects (a pattern that moves over many tiles, a flock) spreads
+// its hulls over the whole view, so the union box rejects nothing and every segment of
+// every block used to walk the change grid. Seen from one block, few of those hulls are
+// reachable: its camera rays lie in a narrow cone, its shadow rays in one cone per light.
+// Up to kMaxLocal such candidates are kept per block; each fan (and the loose segments)
+// gets a bit mask over them, and a segment is tested against its mask's hulls only.
+struct BlockHulls {
+    using Mask = std::uint64_t;
+    static constexpr std::size_t kMaxLocal = 64;
+    // Above this many changed hulls, sorting them per block costs more than the grid.
+    static constexpr std::size_t kMaxHullsToSort = 512;
+
+    // all: too many candidates to list; test segments against the whole ChangeIndex
+    // (whenever their mask below is non-zero).
+    bool all = false;
+    std::size_t count = 0;
+    std::uint32_t local[kMaxLocal];  // candidate number -> index into ChangeIndex::Hulls()
+    Mask fan[BlockFans::kMaxFans] = {0};
+    Mask loose = 0;  // loose segments of finite length (InLooseBox)
+
+    // True when some fan or the loose box may reach a change (then segments need testing).
+    bool Any() const;
+    // True when segment `s` of fan `fanNumber` (BlockFans::kLoose for none) may meet a change.
+    bool SegmentMayMeet(const Segment &s, std::uint8_t fanNumber, const ChangeIndex &changes) const;
+};
+
+// The candidates of a record whose fans are built.
+BlockHulls FindBlockHulls(const BlockRecord &record, const ChangeIndex &changes);
+
+}  // namespace povrayfc
+
+#endif

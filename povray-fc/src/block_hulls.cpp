@@ -1,0 +1,105 @@
+// BlockHulls: per-block candidate hulls from the block's cones and loose box.
+#include "povrayfc/block_hulls.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "povrayfc/hull.h"
+#include "povrayfc/segment_fans.h"
+
+namespace povrayfc {
+
+namespace {
+
+// Whether a hull's box comes near the loose segments of finite length: their box, widened
+// by a margin larger than twice the rounding margin of any segment inside it against any
+// hull inside the change's union (the scale is the union's, so one margin serves all).
+struct LooseReach {
+    Box box;
+    double margin = 0.0;
+    bool finite = false;
+
+    LooseReach(const BlockFans &fans, const Box &changed) : box(fans.looseBox) {
+        if (box.Empty()) return;
+        finite = box.IsFinite() && changed.IsFinite();
+        double scale = 0;
+        for (int a = 0; a < 3; ++a)
+            scale = std::max({scale, std::fabs(box.lo[a]), std::fabs(box.hi[a]), std::fabs(changed.lo[a]),
+                              std::fabs(changed.hi[a])});
+        margin = 0x1p-16 * scale + 1e-30;
+    }
+    bool Empty() const { return box.Empty(); }
+    bool Meets(const Box &u) const {
+        if (box.Empty()) return false;
+        if (!finite || !u.IsFinite()) return true;
+        const double m = margin;
+        return box.lo.x <= u.hi.x + m && u.lo.x <= box.hi.x + m && box.lo.y <= u.hi.y + m &&
+               u.lo.y <= box.hi.y + m && box.lo.z <= u.hi.z + m && u.lo.z <= box.hi.z + m;
+    }
+};
+
+}  // namespace
+
+bool BlockHulls::Any() const {
+    if (loose) return true;
+    for (Mask m : fan)
+        if (m) return true;
+    return false;
+}
+
+bool BlockHulls::SegmentMayMeet(const Segment &s, std::uint8_t fanNumber, const ChangeIndex &changes) const {
+    Mask mask;
+    if (fanNumber == BlockFans::kLoose) {
+        if (!InLooseBox(s)) return changes.MayMeet(s);  // a ray to infinity: no box holds it
+        mask = loose;
+    } else {
+        mask = fan[fanNumber];
+    }
+    if (mask == 0) return false;
+    // The union test first: it rejects most segments of a wide fan at the price of one.
+    if (!changes.MayMeetUnion(s)) return false;
+    if (all) return changes.MayMeet(s);
+    for (; mask; mask &= mask - 1)
+        if (MayMeet(s, changes.Hulls()[local[std::size_t(__builtin_ctzll(mask))]])) return true;
+    return false;
+}
+
+BlockHulls FindBlockHulls(const BlockRecord &record, const ChangeIndex &changes) {
+    BlockHulls result;
+    const std::vector<SegmentFan> &fans = record.fans.fans;
+    Hull everything;
+    everything.box = changes.Bounds();
+    const LooseReach looseReach(record.fans, changes.Bounds());
+
+    bool fanReaches[BlockFans::kMaxFans] = {false};
+    bool anyReach = false;
+    for (std::size_t f = 0; f < fans.size(); ++f) anyReach |= fanReaches[f] = FanMayMeet(fans[f], everything);
+    const bool looseReaches = looseReach.Meets(changes.Bounds());
+    if (!anyReach && !looseReaches) return result;
+
+    auto everythingReachable = [&] {
+        result.all = true;
+        for (std::size_t f = 0; f < fans.size(); ++f) result.fan[f] = fanReaches[f] ? 1 : 0;
+        result.loose = looseReaches ? 1 : 0;
+        return result;
+    };
+    if (changes.HullCount() > BlockHulls::kMaxHullsToSort) return everythingReachable();
+
+    const std::vector<Hull> &hulls = changes.Hulls();
+    for (std::size_t h = 0; h < hulls.size(); ++h) {
+        BlockHulls::Mask reachedBy = 0;  // bit f: fan f; bit kMaxFans: the loose box
+        for (std::size_t f = 0; f < fans.size(); ++f)
+            if (fanReaches[f] && FanMayMeet(fans[f], hulls[h])) reachedBy |= BlockHulls::Mask(1) << f;
+        if (looseReaches && looseReach.Meets(hulls[h].box)) reachedBy |= BlockHulls::Mask(1) << BlockFans::kMaxFans;
+        if (!reachedBy) continue;
+        if (result.count == BlockHulls::kMaxLocal) return everythingReachable();
+        const BlockHulls::Mask bit = BlockHulls::Mask(1) << result.count;
+        result.local[result.count++] = std::uint32_t(h);
+        for (std::size_t f = 0; f < fans.size(); ++f)
+            if (reachedBy & (BlockHulls::Mask(1) << f)) result.fan[f] |= bit;
+        if (reachedBy & (BlockHulls::Mask(1) << BlockFans::kMaxFans)) result.loose |= bit;
+    }
+    return result;
+}
+
+}  // namespace povrayfc
