@@ -220,10 +220,26 @@ void Master::on_hello(int src)
 bool Master::frame_finished(int index)
 {
     std::string err;
-    if (!assembly_->write(index, err)) {
-        fatal(err);
+    std::vector<uint8_t> samples;
+    bool disk_full = false;
+    if (!assembly_->write(index, samples, disk_full, err)) {
+        std::string msg = strf("cannot write frame %d: %s", scene_.frames[size_t(index)],
+                               err.c_str());
+        if (disk_full) {
+            unsigned long long avail = 0;
+            std::string ignored;
+            free_bytes(outdir_, avail, ignored);
+            int missing = int(scene_.frames.size()) - resumed_ - rendered_ - skipped_;
+            msg += strf("\nfc-master: the disk holding %s is full (%s free). The %d frame(s) "
+                        "there are complete; free some space and run the same command again to "
+                        "render the other %d",
+                        outdir_.c_str(), human_bytes(double(avail)).c_str(), resumed_ + rendered_,
+                        missing);
+        }
+        fatal(msg);
         return false;
     }
+    preview_.add(index, samples);
     frame_stats_[size_t(index)].finished_at = now() - start_;
     rendered_++;
     ShelloutResult r = shellouts_.run(Shellouts::PostFrame, scene_.frames[size_t(index)],
@@ -281,6 +297,18 @@ void Master::on_frame(int src)
     double pixels = 0;
     for (const Rect &r : fr.rects)
         pixels += double(r.area());
+    hs.pixels += pixels;
+    if (!extra_.empty()) {
+        // What fc saved: its first frame in a renderer is traced in full, the yardstick.
+        savings_.rays_spent += std::max(0.0, fr.rays);
+        savings_.seconds_spent += fr.trace_seconds;
+        pixels_traced_ += pixels;
+        if (fr.fresh) {
+            fresh_rays_ += std::max(0.0, fr.rays);
+            fresh_seconds_ += fr.trace_seconds;
+            fresh_pixels_ += pixels;
+        }
+    }
     // A fresh renderer with frame coherence traced and recorded everything: no measure of
     // the slave's speed on coherent frames.
     if (!(fr.fresh && !extra_.empty()))
@@ -337,6 +365,9 @@ void Master::on_fail(int src)
         return;
     }
     // Not the scene's fault: try the job elsewhere, leave out a host that keeps failing.
+    int fi = index_of(f.frame);
+    if (fi >= 0)
+        frame_stats_[size_t(fi)].retried = true;
     int failures = sched_->job_failed(f.job, now());
     host_stat(host).failures++;
     if (failures >= Schedule::kRetries) {
@@ -378,6 +409,9 @@ void Master::slave_gone(SlaveInfo &s, const std::string &why, bool respawn)
     if (s.state == SlaveState::Gone)
         return;
     s.state = SlaveState::Gone;
+    for (auto &kv : sched_->jobs())
+        if (kv.second.live && kv.second.slave == s.tid && !sched_->frame_done(kv.second.index))
+            frame_stats_[size_t(kv.second.index)].retried = true;
     std::vector<int> lost = sched_->remove_slave(s.tid);
     for (int id : lost) {
         job_slave_.erase(id);
@@ -477,17 +511,55 @@ void Master::check_timeouts()
     }
 }
 
+ProgressState Master::progress_state() const
+{
+    ProgressState p;
+    p.elapsed = start_ > 0 ? now() - start_ : 0;
+    p.resumed = resumed_;
+    p.frames_todo = int(scene_.frames.size()) - resumed_;
+    p.frames_done = rendered_ + skipped_;
+    // Only this run's work: the tiles of frames already there are neither done nor to do.
+    long tiles = sched_->tiles();
+    long todo = tiles * long(p.frames_todo);
+    long done = sched_->cells_done() - tiles * long(resumed_);
+    p.fraction = todo > 0 ? double(std::max(0L, done)) / double(todo) : 1;
+    if (p.fraction > 0.02 && p.fraction < 1)
+        p.eta = p.elapsed * (1 - p.fraction) / p.fraction;
+    std::set<int> flight;
+    for (auto &kv : sched_->jobs())
+        if (kv.second.live)
+            flight.insert(scene_.frames[size_t(kv.second.index)]);
+    p.in_flight.assign(flight.begin(), flight.end());
+    p.frame_pixels = double(scene_.area.area());
+    std::map<std::string, HostStat> live;
+    for (auto &kv : const_cast<Cluster &>(cluster_).slaves()) {
+        const SlaveInfo &sl = kv.second;
+        if (sl.state == SlaveState::Gone)
+            continue;
+        HostStat &h = live[sl.host];
+        h.name = sl.host;
+        h.slaves++;
+        p.slaves++;
+        if (sched_->live_jobs(kv.first) > 0) {
+            h.busy++;
+            p.busy++;
+        }
+    }
+    for (auto &kv : live) {
+        auto it = host_stats_.find(kv.first);
+        if (it != host_stats_.end())
+            kv.second.pixels = it->second.pixels;
+        p.hosts.push_back(kv.second);
+    }
+    return p;
+}
+
 void Master::progress()
 {
-    int busy = 0, alive = 0;
-    for (auto &kv : cluster_.slaves()) {
-        if (kv.second.state == SlaveState::Gone)
-            continue;
-        alive++;
-        busy += sched_->live_jobs(kv.first) > 0;
-    }
-    double frac = cells_total_ > 0 ? double(sched_->cells_done()) / double(cells_total_) : 1;
-    report_.progress(now() - start_, sched_->frames_done(), sched_->frames(), frac, busy, alive);
+    // The summary says when it is done: progress never shows a finished run.
+    if (sched_->finished())
+        return;
+    report_.progress(progress_state());
 }
 
 void Master::fatal(const std::string &msg)
@@ -495,6 +567,7 @@ void Master::fatal(const std::string &msg)
     if (failed_)
         return;     // report the first error only
     failed_ = true;
+    error_ = msg;
     report_.clear_line();
     fprintf(stderr, "fc-master: %s", msg.c_str());
     if (msg.empty() || msg.back() != '\n')
@@ -586,6 +659,7 @@ int Master::loop()
         if (!planned_)
             dispatch();
         check_timeouts();
+        preview_.flush(now(), false);
         if (cluster_.live_slaves() == 0 && !sched_->finished() && !failed_) {
             fatal("no slave is left to render the remaining frames");
             break;
