@@ -531,12 +531,12 @@ ProgressState Master::progress_state() const
             flight.insert(scene_.frames[size_t(kv.second.index)]);
     p.in_flight.assign(flight.begin(), flight.end());
     p.frame_pixels = double(scene_.area.area());
-    std::map<std::string, HostStat> live;
+    std::map<std::string, HostProgress> live;
     for (auto &kv : const_cast<Cluster &>(cluster_).slaves()) {
         const SlaveInfo &sl = kv.second;
         if (sl.state == SlaveState::Gone)
             continue;
-        HostStat &h = live[sl.host];
+        HostProgress &h = live[sl.host];
         h.name = sl.host;
         h.slaves++;
         p.slaves++;

@@ -118,7 +118,7 @@ std::vector<std::string> Report::display(const ProgressState &p, int columns, in
     // One line per host, as many as the terminal has room for.
     int room_hosts = std::max(0, std::min(rows - 3, 8));
     int shown = 0;
-    for (const HostStat &h : p.hosts) {
+    for (const HostProgress &h : p.hosts) {
         if (shown == room_hosts) {
             out.push_back(fit(strf("  ... %zu more host(s)", p.hosts.size() - size_t(shown)),
                               columns));
@@ -143,7 +143,7 @@ std::string Report::plain_line(const ProgressState &p)
     s += strf(", %zu in flight, %d/%d slaves busy, %s elapsed, ETA %s", p.in_flight.size(), p.busy,
               p.slaves, duration(p.elapsed).c_str(), duration(p.eta).c_str());
     double pixels = 0;
-    for (const HostStat &h : p.hosts)
+    for (const HostProgress &h : p.hosts)
         pixels += h.pixels;
     if (p.elapsed > 0 && pixels > 0)
         s += ", " + rate(pixels / p.elapsed, p.frame_pixels);

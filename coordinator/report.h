@@ -66,6 +66,13 @@ struct Savings {
     double seconds_spent = 0, seconds_full = 0;
 };
 
+// One host's line of the progress display.
+struct HostProgress {
+    std::string name;
+    int slaves = 0, busy = 0;           // live slaves, and those with work
+    double pixels = 0;                  // pixels delivered this run
+};
+
 // One progress display.
 struct ProgressState {
     double elapsed = 0, eta = -1;
@@ -74,7 +81,7 @@ struct ProgressState {
     std::vector<int> in_flight;         // frames being rendered
     int busy = 0, slaves = 0;
     double frame_pixels = 1;            // pixels of one frame's render area
-    std::vector<HostStat> hosts;        // the live ones
+    std::vector<HostProgress> hosts;    // the live ones
 };
 
 // The end of a run.
