@@ -38,7 +38,7 @@ private:
     bool probe();
     bool prepare_output();
     Manifest manifest() const;
-    bool resume_frames(bool fresh, std::vector<bool> &replace);
+    bool resume_frames(bool fresh, bool adopt, std::vector<bool> &replace);
     bool check_space(const std::vector<bool> &replace);
     bool start_cluster();
 

@@ -174,10 +174,9 @@ Manifest Master::manifest() const
 }
 
 // Resume: which frames the output directory already holds, complete and correct.
-bool Master::resume_frames(bool fresh, std::vector<bool> &replace)
+bool Master::resume_frames(bool fresh, bool adopt, std::vector<bool> &replace)
 {
     std::vector<std::string> damaged;
-    bool adopt = !outdir_obj_.has_previous();
     int adopted = 0;
     for (size_t i = 0; i < scene_.frames.size(); i++) {
         std::string path = assembly_->final_path(int(i));
@@ -188,7 +187,7 @@ bool Master::resume_frames(bool fresh, std::vector<bool> &replace)
         if (fresh || !assembly_->verify(int(i), adopt, why, pixels)) {
             replace[i] = true;
             if (!fresh)
-                damaged.push_back(base_name(path) + ": " + why);
+                damaged.push_back(base_name(path) + " again: " + why);
             continue;
         }
         frame_stats_[i].resumed = true;
@@ -205,7 +204,7 @@ bool Master::resume_frames(bool fresh, std::vector<bool> &replace)
         preview_.add(int(i), pixels);
     }
     for (size_t k = 0; k < damaged.size() && k < 5; k++)
-        fprintf(stderr, "fc-master: warning: rendering %s again\n", damaged[k].c_str());
+        fprintf(stderr, "fc-master: warning: rendering %s\n", damaged[k].c_str());
     if (damaged.size() > 5)
         fprintf(stderr, "fc-master: warning: ... and %zu more frame(s) that are not complete "
                         "and correct\n", damaged.size() - 5);
@@ -257,11 +256,11 @@ bool Master::prepare_output()
 {
     outdir_ = absolute(opt_.output.empty() ? dir_name(scene_.output_name) : opt_.output);
     std::string err;
-    if (!outdir_obj_.open(outdir_, err)) {
+    std::string stem = base_name(scene_.stem);
+    if (!outdir_obj_.open(outdir_, stem + format_.ext, err)) {
         fprintf(stderr, "fc-master: %s\n", err.c_str());
         return false;
     }
-    std::string stem = base_name(scene_.stem);
     assembly_.reset(new FrameAssembly(outdir_obj_, format_, stem, scene_.digits, scene_.width,
                                       scene_.height, scene_.frames));
     assembly_->remove_stale_temps();
@@ -300,13 +299,16 @@ bool Master::prepare_output()
         return false;
     }
     bool fresh = opt_.force || !diffs.empty();
+    // Frames in a directory without a record (written by POV-Ray itself, or by an older
+    // fc-master) are kept when they decode completely; with a record, only recorded ones.
+    bool adopt = !outdir_obj_.has_previous() && !fresh;
     if (!outdir_obj_.start_run(now, fresh, err)) {
         fprintf(stderr, "fc-master: output directory %s is not writable: %s\n", outdir_.c_str(),
                 err.c_str());
         return false;
     }
     std::vector<bool> replace(scene_.frames.size(), false);
-    return resume_frames(fresh, replace) && check_space(replace);
+    return resume_frames(fresh, adopt, replace) && check_space(replace);
 }
 
 bool Master::start_cluster()

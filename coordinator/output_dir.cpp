@@ -38,9 +38,10 @@ OutputDir::~OutputDir()
         close(lock_fd_);    // releases the lock
 }
 
-bool OutputDir::open(const std::string &dir, std::string &err)
+bool OutputDir::open(const std::string &dir, const std::string &run, std::string &err)
 {
     dir_ = dir;
+    run_ = run;
     std::string why;
     if (!make_dirs(dir, why)) {
         err = "output directory " + dir + ": " + why;
@@ -84,7 +85,7 @@ bool OutputDir::open(const std::string &dir, std::string &err)
 bool OutputDir::load(std::string &err)
 {
     std::string text;
-    std::string path = meta_ + "/manifest";
+    std::string path = manifest_path();
     if (file_exists(path)) {
         if (!read_text(path, text, err))
             return false;
@@ -96,7 +97,7 @@ bool OutputDir::load(std::string &err)
                 previous_[line.substr(0, tab)] = line.substr(tab + 1);
         }
     }
-    path = meta_ + "/frames";
+    path = journal_path();
     if (file_exists(path)) {
         if (!read_text(path, text, err))
             return false;
@@ -137,7 +138,7 @@ bool OutputDir::start_run(const Manifest &now, bool fresh, std::string &err)
     std::string text;
     for (auto &kv : now)
         text += one_line(kv.first) + "\t" + one_line(kv.second) + "\n";
-    std::string path = meta_ + "/manifest", tmp = path + ".tmp";
+    std::string path = manifest_path(), tmp = path + ".tmp";
     if (!write_file_durably(tmp, text.data(), text.size(), err))
         return false;
     if (rename(tmp.c_str(), path.c_str()) != 0) {
@@ -145,14 +146,31 @@ bool OutputDir::start_run(const Manifest &now, bool fresh, std::string &err)
         return sys_fail(err, "rename " + tmp);
     }
     previous_ = now;
-    std::string journal = meta_ + "/frames";
-    int flags = O_WRONLY | O_CREAT | O_APPEND | O_CLOEXEC | (fresh ? O_TRUNC : 0);
+    std::string journal = journal_path();
+    int flags = O_RDWR | O_CREAT | O_APPEND | O_CLOEXEC | (fresh ? O_TRUNC : 0);
     journal_fd_ = ::open(journal.c_str(), flags, 0644);
     if (journal_fd_ < 0)
         return sys_fail(err, "open " + journal);
     if (fresh)
         frames_.clear();
+    // A line cut short (a full disk) must not run into the next run's first line.
+    struct stat st;
+    char last = '\n';
+    if (fstat(journal_fd_, &st) == 0 && st.st_size > 0 &&
+        pread(journal_fd_, &last, 1, st.st_size - 1) == 1 && last != '\n' &&
+        write(journal_fd_, "\n", 1) != 1)
+        return sys_fail(err, "write " + journal);
     return true;
+}
+
+std::string OutputDir::manifest_path() const
+{
+    return meta_ + "/" + run_ + ".manifest";
+}
+
+std::string OutputDir::journal_path() const
+{
+    return meta_ + "/" + run_ + ".frames";
 }
 
 bool OutputDir::recorded(const std::string &name, uint64_t &hash) const
@@ -171,7 +189,7 @@ bool OutputDir::record(const std::string &name, uint64_t hash, std::string &err)
     if (n != ssize_t(line.size())) {
         if (n >= 0)
             errno = ENOSPC;
-        return sys_fail(err, "write " + meta_ + "/frames");
+        return sys_fail(err, "write " + journal_path());
     }
     frames_[name] = hash;
     return true;

@@ -1,14 +1,16 @@
 // output_dir.h - fc-master's output directory: created and checked before anything renders,
 // locked against a second master, and holding the record of the run.
 //
-// DIR/.fc-master/ holds three files:
-//   lock      flock()ed while a master writes frames here (its pid inside, for the message);
-//   manifest  what makes the frames what they are: the scene file (name and contents),
-//             POV-Ray's resolved options that shape pixels, the renderer's version line, one
-//             "key<TAB>value" line each; a resume whose manifest differs is refused (--force
-//             starts over), so frames of two different renders never mix;
-//   frames    one line per frame written ("name hash"): the hash of its stored pixels, so a
-//             resume trusts a frame only if it decodes completely to the same pixels.
+// DIR/.fc-master/ holds, for each animation RUN written here (its frames' names without number,
+// e.g. "clk.png" for clk01.png ...: several animations may share a directory):
+//   lock          flock()ed while a master writes frames here (its pid inside, for the
+//                 message): one master per directory;
+//   RUN.manifest  what makes the frames what they are: the scene file (name and contents),
+//                 POV-Ray's resolved options that shape pixels, the renderer's version line,
+//                 one "key<TAB>value" line each; a resume whose manifest differs is refused
+//                 (--force starts over), so frames of two different renders never mix;
+//   RUN.frames    one line per frame written ("name hash"): the hash of its stored pixels, so
+//                 a resume trusts a frame only if it decodes completely to the same pixels.
 #pragma once
 
 #include <cstdint>
@@ -25,8 +27,9 @@ public:
     ~OutputDir();
 
     // Create dir and its parents, prove it writable by creating DIR/.fc-master and its lock,
-    // and take the lock. False with err (strerror text; another master's pid when locked).
-    bool open(const std::string &dir, std::string &err);
+    // take the lock and read the record of `run`. False with err (strerror text; another
+    // master's pid when locked).
+    bool open(const std::string &dir, const std::string &run, std::string &err);
 
     const std::string &path() const { return dir_; }
 
@@ -48,8 +51,10 @@ public:
 
 private:
     bool load(std::string &err);
+    std::string manifest_path() const;
+    std::string journal_path() const;
 
-    std::string dir_, meta_;
+    std::string dir_, meta_, run_;
     int lock_fd_ = -1;
     int journal_fd_ = -1;
     Manifest previous_;
