@@ -9,6 +9,7 @@
 #include <sys/socket.h>
 #include <sys/stat.h>
 #include <sys/un.h>
+#include <netdb.h>
 #include <netinet/in.h>
 #include <arpa/inet.h>
 #include <sys/wait.h>
@@ -266,6 +267,26 @@ bool VirtualMachine::add_hosts(const std::string &hostfile, std::string &err)
     std::vector<std::string> names = hostfile_hosts(hostfile);
     if (names.empty())
         return true;
+    // Names are resolved here first: a pvmd whose own name is a loopback address reports
+    // every host as PvmIPLoopback, hiding the more basic mistake of a name that does not
+    // resolve at all.
+    std::string unknown;
+    for (const std::string &n : names) {
+        struct addrinfo hints, *res = nullptr;
+        memset(&hints, 0, sizeof hints);
+        hints.ai_family = AF_INET;      // PVM 3 speaks IPv4 only
+        int e = getaddrinfo(n.c_str(), nullptr, &hints, &res);
+        if (res)
+            freeaddrinfo(res);
+        if (e != 0)
+            unknown += strf("\n  %s: the name does not resolve on this machine (%s; check "
+                            "/etc/hosts)", n.c_str(), gai_strerror(e));
+    }
+    if (!unknown.empty()) {
+        err = "cannot add the host(s) of " + hostfile + " to the virtual machine:" + unknown;
+        stop();
+        return false;
+    }
     std::vector<char *> argv;
     for (std::string &n : names)
         argv.push_back(&n[0]);
