@@ -196,7 +196,9 @@ void Master::on_hello(int src)
     setup.renderer = renderer_;
     setup.cwd = cwd_;
     setup.options = opt_.pov;
-    setup.extra = extra_;
+    // The format first: the user named none when it is set.
+    setup.extra = format_options_;
+    setup.extra.insert(setup.extra.end(), extra_.begin(), extra_.end());
     setup.width = scene_.width;
     setup.height = scene_.height;
     setup.digits = scene_.digits;

@@ -74,6 +74,7 @@ private:
     Report report_;
     std::string renderer_, cwd_, outdir_, tmpdir_;
     std::vector<std::string> extra_;
+    std::vector<std::string> format_options_;   // the format when the user named none (+FN)
     SceneInfo scene_;
     ResolvedOptions resolved_;          // POV-Ray's resolved options (Create_Ini)
     OutputFormat format_;

@@ -98,16 +98,41 @@ bool Master::probe()
         return false;
     }
     // Both questions to POV-Ray at once: each start of povray-fc costs a tenth of a second.
+    // The resolved options are asked twice, with Targa and with PNG put before the user's
+    // options: where the two answers differ, the user named no format.
     double limit = std::max(30.0, opt_.timeout);
-    std::string scene_err, ini_err;
-    bool ini_ok = false;
-    ResolvedOptions ini;
+    std::string scene_err, ini_err, png_err;
+    bool ini_ok = false, png_ok = false;
+    ResolvedOptions ini, png;
+    if (mkdir((tmpdir_ + "/png").c_str(), 0700) != 0) {
+        perror(("fc-master: mkdir " + tmpdir_ + "/png").c_str());
+        return false;
+    }
     std::thread resolved([&] {
-        ini_ok = probe_resolved_options(renderer_, opt_.pov, cwd_, tmpdir_, limit, ini, ini_err);
+        ini_ok = probe_resolved_options(renderer_, "+FT", opt_.pov, cwd_, tmpdir_, limit, ini,
+                                        ini_err);
     });
-    bool scene_ok = probe_scene(renderer_, opt_.pov, cwd_, tmpdir_, limit, scene_, scene_err);
+    std::thread resolved_png([&] {
+        png_ok = probe_resolved_options(renderer_, "+FN", opt_.pov, cwd_, tmpdir_ + "/png",
+                                        limit, png, png_err);
+    });
+    bool scene_ok = probe_scene(renderer_, "+FT", opt_.pov, cwd_, tmpdir_, limit, scene_, scene_err);
     resolved.join();
-    err = !scene_ok ? scene_err : ini_err;
+    resolved_png.join();
+    err = !scene_ok ? scene_err : !ini_ok ? ini_err : png_err;
+    ini_ok = ini_ok && png_ok;
+    if (scene_ok && ini_ok && ini["Output_File_Type"] != png["Output_File_Type"]) {
+        // No format named: Targa, fc-master's default (the paper's), unless the output name
+        // ends as a PNG or OpenEXR file does; then that format, so that +Oclk.png gives
+        // clk1.png as POV-Ray names PNG frames, not clk.png1.tga.
+        std::string option = format_from_name(ini);
+        if (option != "+FT") {
+            ini["Output_File_Type"] = option.substr(2);
+            format_options_ = {option};
+            scene_ = SceneInfo();
+            scene_ok = probe_scene(renderer_, option, opt_.pov, cwd_, tmpdir_, limit, scene_, err);
+        }
+    }
     if (scene_ok && ini_ok &&
         (!output_format(ini, format_, err) || !split_output_name(scene_, format_.ext, err) ||
          !set_frames(scene_, ini, err)))

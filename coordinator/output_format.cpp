@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cctype>
 #include <cstdlib>
+#include <cstring>
 
 #include "util.h"
 
@@ -109,6 +110,16 @@ bool output_format(const ResolvedOptions &ini, OutputFormat &f, std::string &err
         return false;
     }
     return true;
+}
+
+std::string format_from_name(const ResolvedOptions &ini)
+{
+    std::string name = get(ini, "Output_File_Name", "");
+    auto ends = [&](const char *ext) {
+        size_t n = strlen(ext);
+        return name.size() > n && name.compare(name.size() - n, n, ext) == 0;
+    };
+    return ends(".png") ? "+FN" : ends(".exr") ? "+FE" : "+FT";
 }
 
 std::string channel_encoding(const ResolvedOptions &ini, const OutputFormat &f)

@@ -32,6 +32,10 @@ struct OutputFormat {
 // at other than 8 bits, no output file.
 bool output_format(const ResolvedOptions &ini, OutputFormat &format, std::string &err);
 
+// The format option for a user who named no format: +FN when Output_File_Name ends in
+// ".png", +FE for ".exr" (as POV-Ray compares them: lower case), else +FT.
+std::string format_from_name(const ResolvedOptions &ini);
+
 // The frame-channel encoding the renderer sends for these options (patch 0030): "rgbf" under
 // diffusion dithering, else the format's own.
 std::string channel_encoding(const ResolvedOptions &ini, const OutputFormat &format);

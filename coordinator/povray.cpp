@@ -89,15 +89,15 @@ std::string frame_file_name(const std::string &stem, int digits, int frame, cons
     return stem + strf("%0*d", digits, frame) + ext;
 }
 
-bool probe_scene(const std::string &renderer, const std::vector<std::string> &options,
-                 const std::string &cwd, const std::string &tmpdir, double timeout,
-                 SceneInfo &info, std::string &err)
+bool probe_scene(const std::string &renderer, const std::string &format,
+                 const std::vector<std::string> &options, const std::string &cwd,
+                 const std::string &tmpdir, double timeout, SceneInfo &info, std::string &err)
 {
     std::string inc = tmpdir + "/fc-probe.inc";
     if (!write_text(inc, strf("#error \"%s\"\n", kProbeMarker), err))
         return false;
-    // Targa unless the user names a format: +FT goes before the user's options.
-    std::vector<std::string> argv = {renderer, "+FT"};
+    // The format goes before the user's options: it holds unless they name another.
+    std::vector<std::string> argv = {renderer, format};
     argv.insert(argv.end(), options.begin(), options.end());
     argv.insert(argv.end(), {"-D", "-UA", "+HI" + inc});
     for (const char *cmd : kShelloutOptions)
@@ -205,12 +205,13 @@ std::string ini_value(const std::string &v)
 
 } // namespace
 
-bool probe_resolved_options(const std::string &renderer, const std::vector<std::string> &options,
-                            const std::string &cwd, const std::string &tmpdir, double timeout,
-                            ResolvedOptions &out, std::string &err)
+bool probe_resolved_options(const std::string &renderer, const std::string &format,
+                            const std::vector<std::string> &options, const std::string &cwd,
+                            const std::string &tmpdir, double timeout, ResolvedOptions &out,
+                            std::string &err)
 {
     std::string ini = tmpdir + "/resolved.ini";
-    std::vector<std::string> argv = {renderer, "+FT"};     // Targa unless the user says otherwise
+    std::vector<std::string> argv = {renderer, format};
     argv.insert(argv.end(), options.begin(), options.end());
     argv.push_back("+GI" + ini);
     argv.push_back("Frame_Channel=" + tmpdir + "/no-such-directory/channel");

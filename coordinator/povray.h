@@ -36,23 +36,25 @@ struct SceneInfo {
     bool shellouts_permitted = false;   // povray.conf allows shell-out commands
 };
 
-// Run `renderer +FT options... -D -UA +HI<probe.inc>` in cwd (tmpdir holds the probe include,
+// Run `renderer FORMAT options... -D -UA +HI<probe.inc>` in cwd (FORMAT, e.g. +FT, is the
+// format unless the options name one; tmpdir holds the probe include,
 // it must be readable under POV-Ray's I/O restrictions, e.g. below /tmp), with the user's
 // shell-outs replaced (the probe must not run them) and a harmless pre-scene command that
 // tells whether povray.conf allows shell-outs. On success fills info; on failure err holds
 // POV-Ray's own error lines. Fills all but the names and frames (split_output_name, set_frames).
-bool probe_scene(const std::string &renderer, const std::vector<std::string> &options,
-                 const std::string &cwd, const std::string &tmpdir, double timeout,
-                 SceneInfo &info, std::string &err);
+bool probe_scene(const std::string &renderer, const std::string &format,
+                 const std::vector<std::string> &options, const std::string &cwd,
+                 const std::string &tmpdir, double timeout, SceneInfo &info, std::string &err);
 
 // POV-Ray's resolved options as its Create_Ini writes them (key -> value, quotes removed):
-// runs `renderer options... +GI<ini> Frame_Channel=<a path that cannot be opened>`, which
+// runs `renderer FORMAT options... +GI<ini> Frame_Channel=<a path that cannot be opened>`, which
 // writes the INI file and stops before anything runs (patch 0020 opens the channel first).
 // A renderer without the frame channel writes none and is refused here.
 typedef std::map<std::string, std::string> ResolvedOptions;
-bool probe_resolved_options(const std::string &renderer, const std::vector<std::string> &options,
-                            const std::string &cwd, const std::string &tmpdir, double timeout,
-                            ResolvedOptions &out, std::string &err);
+bool probe_resolved_options(const std::string &renderer, const std::string &format,
+                            const std::vector<std::string> &options, const std::string &cwd,
+                            const std::string &tmpdir, double timeout, ResolvedOptions &out,
+                            std::string &err);
 
 // From the first frame's output name and the format's extension: stem, digits and first frame
 // (or a still's single frame). False with err when the name does not fit.

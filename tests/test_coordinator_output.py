@@ -311,16 +311,31 @@ def test_output_format_as_povray_writes_it(coordinator, coordinator_references, 
         assert got.dtype == want.dtype and (got == want).all(), f
 
 
-def test_output_name_from_povray_with_format(coordinator, coordinator_references, tmp_path):
-    # +Oclk.png with +FN: POV-Ray names the frames clk1.png ... (not clk.png1.tga).
-    out = tmp_path / "out"
-    r = coordinator.run(["--no-fc", "--quiet", SCENE] + SMALL + ["+FN", "+Oclk.png", "-o",
-                                                                str(out)])
+OUTPUT_NAMES = {
+    # +Orenders/clk.png names PNG frames clk1.png ... as POV-Ray does, not clk.png1.tga; with
+    # no format named, the name's extension chooses it (Targa stays the default otherwise).
+    "png-named": (["+FN", "+Orenders/clk.png"], "clk%d.png", ["+FN"], "moving%d.png"),
+    "png-from-name": (["+Orenders/clk.png"], "clk%d.png", ["+FN"], "moving%d.png"),
+    "exr-from-name": (["+Orenders/clk.exr"], "clk%d.exr", ["+FE"], "moving%d.exr"),
+    # Targa named: POV-Ray keeps a foreign extension and adds its own.
+    "targa-named": (["+FT", "+Orenders/clk.png"], "clk.png%d.tga", [], "moving%d.tga"),
+}
+
+
+@pytest.mark.parametrize("name", sorted(OUTPUT_NAMES))
+def test_output_name_with_extension(coordinator, coordinator_references, tmp_path, name):
+    opts, pattern, ref_opts, ref_pattern = OUTPUT_NAMES[name]
+    # From another directory, without -o: the frames go where POV-Ray would write them.
+    r = coordinator.run(["--no-fc", "--quiet", os.path.join(COORDINATOR_SCENES, SCENE)] +
+                        SMALL + opts, cwd=tmp_path)
     assert r.returncode == 0, r.stderr
-    assert frame_files(out) == ["clk%d.png" % n for n in range(1, 9)]
-    ref = coordinator_references.frames(SCENE, SMALL + ["+FN"])
+    out = tmp_path / "renders"
+    assert frame_files(out) == sorted(pattern % n for n in range(1, 9))
+    pixel_type = "half" if pattern.endswith(".exr") else "uint8"
+    ref = coordinator_references.frames(SCENE, SMALL + ref_opts, pixel_type)
     for n in range(1, 9):
-        assert (load_rgb(out / ("clk%d.png" % n)) == ref["moving%d.png" % n]).all()
+        got = load_rgb(out / (pattern % n), pixel_type)
+        assert (got == ref[ref_pattern % n]).all(), pattern % n
 
 
 @pytest.mark.parametrize("opt,words", [
