@@ -228,6 +228,7 @@ bool Master::frame_finished(int index)
         std::string msg = strf("cannot write frame %d: %s", scene_.frames[size_t(index)],
                                err.c_str());
         if (disk_full) {
+            preview_.stop();    // its files would only take what a frame needs
             unsigned long long avail = 0;
             std::string ignored;
             free_bytes(outdir_, avail, ignored);
@@ -358,6 +359,18 @@ void Master::on_fail(int src)
         s->last_msg = now();
     std::string host = s ? s->host : "?";
     std::string what = f.status == -1 ? "slave error" : describe_status(f.status);
+    last_failure_ = "on " + host + ": " + first_line(f.message);
+    if (f.job < 0) {
+        // The slave could not start (no room for its directory, say); its exit follows and
+        // it is replaced, up to a host's failure limit.
+        report_.clear_line();
+        fprintf(stderr, "fc-master: warning: slave t%x on host %s: %s\n", unsigned(src),
+                host.c_str(), first_line(f.message).c_str());
+        host_stat(host).failures++;
+        if (s && cluster_.host_failed(*s))
+            leave_out_host(s->dtid, first_line(f.message));
+        return;
+    }
     if (job_stats_.count(f.job))
         job_stats_[f.job].status = "failed";
     job_slave_.erase(f.job);
@@ -392,7 +405,7 @@ void Master::leave_out_host(int dtid, const std::string &last_error)
     if (!h)
         return;
     report_.clear_line();
-    fprintf(stderr, "fc-master: warning: host %s failed %d jobs and is left out (last: %s)\n",
+    fprintf(stderr, "fc-master: warning: host %s failed %d times and is left out (last: %s)\n",
             h->name.c_str(), h->failures, last_error.c_str());
     host_stat(h->name).excluded = true;
     for (auto &kv : cluster_.slaves()) {
@@ -663,7 +676,8 @@ int Master::loop()
         check_timeouts();
         preview_.flush(now(), false);
         if (cluster_.live_slaves() == 0 && !sched_->finished() && !failed_) {
-            fatal("no slave is left to render the remaining frames");
+            fatal("no slave is left to render the remaining frames" +
+                  (last_failure_.empty() ? std::string() : " (last failure " + last_failure_ + ")"));
             break;
         }
         progress();

@@ -95,6 +95,7 @@ private:
     long messages_ = 0;                 // messages received
     int exit_code_ = 0;
     std::string error_;                 // the first fatal error
+    std::string last_failure_;          // the last host-side failure ("on HOST: message")
     Savings savings_;                   // what fc saved (rays and trace time spent so far)
     double fresh_rays_ = 0, fresh_seconds_ = 0, fresh_pixels_ = 0, pixels_traced_ = 0;
     std::string vm_kind_ = "none";      // "private" or "running" once started

@@ -262,8 +262,16 @@ bool Master::check_space(const std::vector<bool> &replace)
         fprintf(stderr, "fc-master: output directory: %s\n", err.c_str());
         return false;
     }
-    if (double(avail) >= need)
+    if (double(avail) >= need + preview_.max_bytes())
         return true;
+    if (double(avail) >= need) {
+        // The frames come first.
+        fprintf(stderr, "fc-master: warning: no room for the preview in %s (it needs up to %s "
+                        "more): turned off\n", outdir_.c_str(),
+                human_bytes(preview_.max_bytes()).c_str());
+        preview_.stop();
+        return true;
+    }
     std::string what = strf("%d frame(s) of %s%s need %s, %s is free", todo,
                             exact ? "" : "up to ", human_bytes(per).c_str(),
                             human_bytes(need).c_str(), human_bytes(double(avail)).c_str());

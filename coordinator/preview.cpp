@@ -38,6 +38,15 @@ void Preview::start(const std::string &dir, int width, int height, PixelType typ
     sheet_.assign(size_t(cols_ * tw_) * size_t(rows_ * th_) * 3, 0);
 }
 
+double Preview::max_bytes() const
+{
+    if (!on_)
+        return 0;
+    double latest = double(width_) * double(height_) * 3;
+    double sheet = double(cols_ * tw_) * double(rows_ * th_) * 3;
+    return 2 * (latest + sheet);
+}
+
 void Preview::to_rgb8(const std::vector<uint8_t> &samples, std::vector<uint8_t> &rgb) const
 {
     size_t n = size_t(width_) * size_t(height_) * 3;

@@ -33,6 +33,12 @@ public:
     // reported once and turns the preview off: it must never stop a render.
     void flush(double now, bool force);
 
+    // Most bytes the preview's files take on disk (uncompressed, a file and its temporary).
+    double max_bytes() const;
+
+    // Turn the preview off (its files stay as they are).
+    void stop() { on_ = false; }
+
     const std::string &dir() const { return dir_; }
 
 private:

@@ -149,6 +149,32 @@ exec unshare -m sh -c 'mount -t tmpfs -o size=64k tmpfs "$0" &&
     assert_frames_exact(out, coordinator_references.frames(SCENE, SMALL))
 
 
+@root_only
+def test_slave_without_room_in_tmp_says_so(coordinator, tmp_path):
+    # A slave whose /tmp has no room left for its working directory (no inode, no block):
+    # the reason reaches the user, and the render stops once the host is left out.
+    from conftest import FC_SLAVE
+    script = tmp_path / "full-tmp-slave"
+    script.write_text(f"""#!/bin/sh
+exec unshare -m sh -c '
+  keep=/run/fc-test-keep-$$; mkdir -p $keep && mount --bind "$PVM_TMP" $keep &&
+  mount -t tmpfs -o size=64k,nr_inodes=64 tmpfs /tmp && mkdir -p "$PVM_TMP" &&
+  mount --bind $keep "$PVM_TMP" && umount -l $keep && rmdir $keep
+  i=0; while touch /tmp/f$i 2>/dev/null; do i=$((i+1)); done
+  head -c 100000 /dev/zero > /tmp/fill 2>/dev/null
+  exec {FC_SLAVE}'
+""")
+    script.chmod(0o755)
+    out = tmp_path / "out"
+    r = coordinator.run(["--no-fc", "--slave", str(script), "--slaves", "1", SCENE] + SMALL +
+                        ["-o", str(out)])
+    # Invariant: the slave's own failure is shown with the system's reason, not just "exited".
+    assert r.returncode == 1, r.stderr
+    assert "mkdtemp /tmp/fc-slave-" in r.stderr and "No space left on device" in r.stderr, r.stderr
+    assert frame_files(out) == []
+    assert coordinator.wait_no_processes() == []
+
+
 # --- the output directory, checked before rendering ------------------------------------------
 
 @root_only
