@@ -449,7 +449,7 @@ void Master::finish(bool ok)
         head += "  \"error\": " + (ok ? std::string("null") : Report::json_string(error_)) + ",\n";
         if (r.savings.known)
             head += strf("  \"fc_saved\": {\"rays_spent\": %.0f, \"rays_without_fc\": %.0f, "
-                         "\"trace_seconds_spent\": %.3f, \"trace_seconds_without_fc\": %.3f},\n",
+                         "\"trace_seconds_spent\": %.3f, \"trace_seconds_first_frame_rate\": %.3f},\n",
                          r.savings.rays_spent, r.savings.rays_full, r.savings.seconds_spent,
                          r.savings.seconds_full);
         else

@@ -57,6 +57,9 @@ int percent(double fraction, bool finished)
 Report::Report(double interval, bool quiet)
     : tty_(isatty(2) != 0), quiet_(quiet), interval_(interval)
 {
+    // A terminal shows the display at once; plain lines start after one interval (a line at
+    // 0:00 says nothing).
+    last_ = tty_ ? -1e9 : 0;
 }
 
 std::string Report::duration(double s)
@@ -223,11 +226,11 @@ std::string Report::summary(const RunSummary &r) const
     if (r.savings.known && r.savings.rays_full > 0) {
         const Savings &v = r.savings;
         double rays = std::max(0.0, v.rays_full - v.rays_spent);
-        double secs = std::max(0.0, v.seconds_full - v.seconds_spent);
-        s += strf("  frame coherence saved about %.0f%% of the rays (%.3g of %.3g) and %s of "
-                  "%s trace time (estimated from the renderers' first frames, traced in full)\n",
-                  100 * rays / v.rays_full, rays, v.rays_full, duration(secs).c_str(),
-                  duration(v.seconds_full).c_str());
+        s += strf("  frame coherence saved about %.0f%% of the rays (traced %.3g of %.3g, estimated "
+                  "from the renderers' first frames, traced in full); trace time %.1f s, %.1f s at "
+                  "the first frames' rate (an upper bound: they also record every ray)\n",
+                  100 * rays / v.rays_full, v.rays_spent, v.rays_full, v.seconds_spent,
+                  v.seconds_full);
     }
     s += strf("  %-20s %6s %6s %7s %7s %14s %10s %16s\n", "host", "slaves", "jobs", "frames",
               "tiles", "rays", "busy", "throughput");

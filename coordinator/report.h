@@ -59,7 +59,8 @@ struct HostStat {
 
 // What frame coherence saved, estimated from the renderers' first frames (which fc traces in
 // full): rays and trace seconds per pixel there, times every pixel rendered, against what was
-// spent.
+// spent. The rays are those a render without fc traces (fc is exact); the seconds are an upper
+// bound, since a first frame also records every ray.
 struct Savings {
     bool known = false;
     double rays_spent = 0, rays_full = 0;
