@@ -264,6 +264,7 @@ void Master::on_frame(int src)
     FrameResult fr;
     SlaveInfo *s = cluster_.slave(src);
     if (!unpack(fr)) {
+        report_.clear_line();
         fprintf(stderr, "fc-master: warning: malformed FC_FRAME from t%x\n", unsigned(src));
         return;
     }
@@ -275,6 +276,7 @@ void Master::on_frame(int src)
         valid = fr.tiles[k] >= 0 && fr.tiles[k] < sched_->tiles() &&
                 sched_->tile(fr.tiles[k]) == fr.rects[k];
     if (!valid) {
+        report_.clear_line();
         fprintf(stderr, "fc-master: warning: unexpected frame %d of job %d from t%x\n",
                 fr.frame, fr.job, unsigned(src));
         return;
@@ -577,6 +579,15 @@ void Master::progress()
     report_.progress(progress_state());
 }
 
+void Master::flush_preview(bool force)
+{
+    std::string err;
+    if (!preview_.flush(now(), force, err)) {
+        report_.clear_line();
+        fprintf(stderr, "fc-master: warning: the preview is turned off: %s\n", err.c_str());
+    }
+}
+
 void Master::fatal(const std::string &msg)
 {
     if (failed_)
@@ -661,6 +672,7 @@ int Master::loop()
             case FC_HOSTDEL: on_host_delete(); break;
             case FC_HOSTADD: on_host_add(); break;
             default:
+                report_.clear_line();
                 fprintf(stderr, "fc-master: warning: unexpected message %s (%d) from t%x\n",
                         tag_name(tag), tag, unsigned(src));
             }
@@ -674,7 +686,7 @@ int Master::loop()
         if (!planned_)
             dispatch();
         check_timeouts();
-        preview_.flush(now(), false);
+        flush_preview(false);
         if (cluster_.live_slaves() == 0 && !sched_->finished() && !failed_) {
             fatal("no slave is left to render the remaining frames" +
                   (last_failure_.empty() ? std::string() : " (last failure " + last_failure_ + ")"));

@@ -62,6 +62,7 @@ private:
     void leave_out_host(int dtid, const std::string &last_error);
     void check_timeouts();
     void progress();
+    void flush_preview(bool force);
     ProgressState progress_state() const;
     RunSummary run_summary(bool ok, double elapsed) const;
     void fatal(const std::string &msg);

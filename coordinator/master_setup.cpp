@@ -407,7 +407,7 @@ RunSummary Master::run_summary(bool ok, double elapsed) const
 
 void Master::finish(bool ok)
 {
-    preview_.flush(now(), true);
+    flush_preview(true);
     if (!opt_.stats.empty() && sched_) {
         RunSummary r = run_summary(ok, start_ > 0 ? now() - start_ : 0.0);
         for (auto &kv : job_stats_)

@@ -111,18 +111,18 @@ bool Preview::write_png(const std::string &name, int w, int h, const std::vector
     return true;
 }
 
-void Preview::flush(double now, bool force)
+bool Preview::flush(double now, bool force, std::string &err)
 {
     if (!on_ || !dirty_ || (!force && now - last_ < kInterval))
-        return;
+        return true;
     last_ = now;
     dirty_ = false;
-    std::string err;
     if (!write_png("latest.png", width_, height_, latest_, err) ||
         !write_png("contact-sheet.png", cols_ * tw_, rows_ * th_, sheet_, err)) {
-        fprintf(stderr, "fc-master: warning: the preview is turned off: %s\n", err.c_str());
         on_ = false;
+        return false;
     }
+    return true;
 }
 
 } // namespace fc

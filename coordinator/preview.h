@@ -29,9 +29,9 @@ public:
     // Frame index i finished (or was already complete): its stored samples.
     void add(int index, const std::vector<uint8_t> &samples);
 
-    // Write the files if something changed and they are due (force: now). A failure is
-    // reported once and turns the preview off: it must never stop a render.
-    void flush(double now, bool force);
+    // Write the files if something changed and they are due (force: now). A failure turns
+    // the preview off and returns false with err (for a warning: it must never stop a render).
+    bool flush(double now, bool force, std::string &err);
 
     // Most bytes the preview's files take on disk (uncompressed, a file and its temporary).
     double max_bytes() const;
