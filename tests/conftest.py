@@ -208,6 +208,12 @@ class CoordinatorReferences:
     def __init__(self, root):
         self.root = root
         self.cache = {}
+        self.dirs = {}
+
+    def path(self, scene, options, name):
+        """The file `name` of the reference render of `scene` with `options` (rendered first
+        with frames())."""
+        return self.dirs[(scene, tuple(options))] / name
 
     def frames(self, scene, options, pixel_type="uint8"):
         """Render `scene` with `options` in one POV-Ray process (Targa unless the options name
@@ -215,6 +221,7 @@ class CoordinatorReferences:
         key = (scene, tuple(options), pixel_type)
         if key not in self.cache:
             out = self.root / ("ref%d" % len(self.cache))
+            self.dirs[(scene, tuple(options))] = out
             out.mkdir()
             stem = os.path.splitext(os.path.basename(scene))[0]
             argv = [coordinator_renderer(), scene, "-D", "+FT", "-UA",

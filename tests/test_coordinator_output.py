@@ -308,6 +308,19 @@ def test_changed_scene_is_refused(coordinator, tmp_path):
     assert "scene contents" in r.stderr and "--force" in r.stderr, r.stderr
 
 
+def file_kind(path):
+    """What OpenImageIO says a file is: format, channels, bits per sample, compression."""
+    import OpenImageIO as oiio
+    inp = oiio.ImageInput.open(str(path))
+    assert inp, oiio.geterror()
+    spec = inp.spec()
+    kind = (inp.format_name(), spec.nchannels, str(spec.format),
+            spec.get_string_attribute("compression"),
+            spec.get_int_attribute("oiio:BitsPerSample"))
+    inp.close()
+    return kind
+
+
 # --- output formats ---------------------------------------------------------------------------
 
 FORMATS = {
@@ -335,6 +348,7 @@ def test_output_format_as_povray_writes_it(coordinator, coordinator_references, 
         got = load_rgb(out / f, pixel_type)
         # Invariant: the same file type, bit depth and pixels as one POV-Ray process's.
         assert got.dtype == want.dtype and (got == want).all(), f
+        assert file_kind(out / f) == file_kind(coordinator_references.path(SCENE, opts, f)), f
 
 
 OUTPUT_NAMES = {
