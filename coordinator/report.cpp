@@ -226,11 +226,12 @@ std::string Report::summary(const RunSummary &r) const
     if (r.savings.known && r.savings.rays_full > 0) {
         const Savings &v = r.savings;
         double rays = std::max(0.0, v.rays_full - v.rays_spent);
-        s += strf("  frame coherence saved about %.0f%% of the rays (traced %.3g of %.3g, estimated "
-                  "from the renderers' first frames, traced in full); trace time %.1f s, %.1f s at "
-                  "the first frames' rate (an upper bound: they also record every ray)\n",
-                  100 * rays / v.rays_full, v.rays_spent, v.rays_full, v.seconds_spent,
-                  v.seconds_full);
+        s += strf("  frame coherence saved about %.0f%% of the rays: %.3g of %.3g million traced\n"
+                  "    (estimated from each renderer's first frame, traced in full); trace time "
+                  "%.1f s, %.1f s at\n    the first frames' rate (an upper bound: a first frame "
+                  "also records every ray)\n",
+                  100 * rays / v.rays_full, v.rays_spent / 1e6, v.rays_full / 1e6,
+                  v.seconds_spent, v.seconds_full);
     }
     s += strf("  %-20s %6s %6s %7s %7s %14s %10s %16s\n", "host", "slaves", "jobs", "frames",
               "tiles", "rays", "busy", "throughput");
