@@ -1,28 +1,31 @@
-// assembly.cpp - frame assembly and Targa output through OpenImageIO.
+// assembly.cpp - frame assembly and output through OpenImageIO (see assembly.h).
 #include "assembly.h"
 
-#include <fcntl.h>
+#include <sys/stat.h>
 #include <unistd.h>
 
 #include <cerrno>
 #include <cstdio>
 #include <cstring>
 
+#include "frame_record.h"
 #include "image_io.h"
 #include "povray.h"
 #include "util.h"
 
 namespace fc {
 
-FrameAssembly::FrameAssembly(const std::string &dir, const std::string &stem, int digits,
-                             int width, int height, const std::vector<int> &frames)
-    : dir_(dir), stem_(stem), digits_(digits), width_(width), height_(height), frames_(frames)
+FrameAssembly::FrameAssembly(OutputDir &dir, const OutputFormat &format, const std::string &stem,
+                             int digits, int width, int height, const std::vector<int> &frames)
+    : dir_(dir), format_(format), stem_(stem), digits_(digits), width_(width), height_(height),
+      frames_(frames)
 {
 }
 
 std::string FrameAssembly::final_path(int index) const
 {
-    return dir_ + "/" + frame_file_name(stem_, digits_, frames_[size_t(index)]);
+    return dir_.path() + "/" +
+           frame_file_name(stem_, digits_, frames_[size_t(index)], format_.ext);
 }
 
 std::string FrameAssembly::temp_path(int index) const
@@ -30,13 +33,80 @@ std::string FrameAssembly::temp_path(int index) const
     return final_path(index) + ".fc-tmp";
 }
 
-bool FrameAssembly::exists_complete(int index) const
+size_t FrameAssembly::frame_bytes(bool &exact) const
+{
+    if (bytes_known_) {
+        exact = bytes_exact_;
+        return bytes_;
+    }
+    bytes_ = encoded_size(bytes_exact_);
+    bytes_known_ = true;
+    exact = bytes_exact_;
+    return bytes_;
+}
+
+size_t FrameAssembly::encoded_size(bool &exact) const
+{
+    size_t raw = size_t(width_) * size_t(height_) * 3 * pixel_type_bytes(format_.pixels);
+    exact = false;
+    if (format_.fixed_size) {
+        // Encode a blank frame: an uncompressed format's size does not depend on the pixels.
+        std::vector<uint8_t> blank(raw, 0), bytes;
+        std::string err;
+        if (encode_image(format_.oiio, format_.compression, width_, height_, format_.pixels,
+                         blank.data(), bytes, err)) {
+            exact = true;
+            return bytes.size();
+        }
+    }
+    return raw + 4096;      // headers and the like
+}
+
+uint64_t FrameAssembly::pixels_hash(const std::vector<uint8_t> &samples)
+{
+    return hash_bytes(samples.data(), samples.size());
+}
+
+bool FrameAssembly::verify(int index, bool adopt, std::string &why,
+                           std::vector<uint8_t> &pixels) const
 {
     std::string path = final_path(index);
+    why.clear();
     if (!file_exists(path))
         return false;
     int w = 0, h = 0, channels = 0;
-    return image_size(path, w, h, channels) && w == width_ && h == height_ && channels >= 3;
+    std::string err;
+    if (!read_image(path, format_.pixels, w, h, channels, pixels, err)) {
+        why = "it does not decode completely (" + err + ")";
+        return false;
+    }
+    if (w != width_ || h != height_) {
+        why = strf("it is %dx%d, not %dx%d", w, h, width_, height_);
+        return false;
+    }
+    if (format_.fixed_size) {
+        // A reader may fill in what a short file lacks; an uncompressed Targa holds at least
+        // its 18-byte header and every pixel (whoever wrote it: POV-Ray adds no footer).
+        size_t want = 18 + size_t(width_) * size_t(height_) * 3;
+        struct stat st;
+        if (stat(path.c_str(), &st) == 0 && size_t(st.st_size) < want) {
+            why = strf("it is cut short (%lld of at least %zu bytes)", (long long)st.st_size, want);
+            return false;
+        }
+    }
+    uint64_t recorded = 0;
+    if (dir_.recorded(base_name(path), recorded)) {
+        if (recorded != pixels_hash(pixels)) {
+            why = "its pixels are not those fc-master wrote";
+            return false;
+        }
+        return true;
+    }
+    if (!adopt) {
+        why = "this run's record does not list it";
+        return false;
+    }
+    return true;
 }
 
 void FrameAssembly::remove_stale_temps() const
@@ -59,43 +129,58 @@ bool FrameAssembly::put(int index, const std::vector<Rect> &rects, const std::ve
         pixels += size_t(r.area());
     }
     bool floats = encoding == "rgbf";
-    if (!floats && encoding != "rgb8") {
-        err = "unknown pixel encoding '" + encoding + "'";
+    bool fits = encoding == format_.encoding || (floats && format_.pixels == PixelType::U8);
+    if (!fits) {
+        err = "the renderer sent " + encoding + " pixels for " + format_.name + " output (" +
+              format_.encoding + " expected): it lacks patch 0030 (frame channel output formats)";
         return false;
     }
-    if (data.size() < pixels * (floats ? 12 : 3) || (!floats && data.size() != pixels * 3)) {
+    size_t per_pixel = bytes_per_pixel(encoding);
+    if (data.size() < pixels * per_pixel || (!floats && data.size() != pixels * per_pixel)) {
         err = strf("%zu bytes of pixels for %zu pixels", data.size(), pixels);
         return false;
     }
+    size_t sample = pixel_type_bytes(format_.pixels);
     Pending &p = frames_in_flight_[index];
-    if (p.rgb.empty())
-        p.rgb.assign(size_t(width_) * size_t(height_) * 3, 0);
+    if (p.samples.empty())
+        p.samples.assign(size_t(width_) * size_t(height_) * 3 * sample, 0);
     if (floats && p.values.empty()) {
         p.quantizer.reset(new Quantizer);
         if (!p.quantizer->parse(data.data() + pixels * 12, data.size() - pixels * 12, err))
             return false;
         p.values.assign(size_t(width_) * size_t(height_) * 3, 0.0f);
     }
-    size_t off = 0;
+    size_t off = 0;     // in pixels
     for (size_t k = 0; k < rects.size(); k++) {
         const Rect &r = rects[k];
-        size_t row = size_t(r.width()) * 3;
-        for (int y = r.y0; y < r.y1; y++) {
-            size_t dst = (size_t(y) * size_t(width_) + size_t(r.x0)) * 3;
-            if (keep[k]) {
-                if (floats)
-                    memcpy(&p.values[dst], data.data() + off * 4, row * 4);
-                else
-                    memcpy(&p.rgb[dst], data.data() + off, row);
+        size_t row = size_t(r.width());
+        for (int y = r.y0; y < r.y1; y++, off += row) {
+            if (!keep[k])
+                continue;
+            size_t dst = size_t(y) * size_t(width_) + size_t(r.x0);    // in pixels
+            const uint8_t *src = data.data() + off * per_pixel;
+            if (floats) {
+                memcpy(&p.values[dst * 3], src, row * 12);
+            } else if (encoding == "rgbl") {
+                // Linear floats, stored as OpenEXR's half floats.
+                std::vector<float> f(row * 3);
+                memcpy(f.data(), src, row * 12);
+                if (!floats_to_half(f.data(), reinterpret_cast<uint16_t *>(&p.samples[dst * 6]),
+                                    row * 3, err))
+                    return false;
+            } else {
+                // rgb8 and rgb16 are the stored samples (little-endian words, as this host).
+                memcpy(&p.samples[dst * 3 * sample], src, row * per_pixel);
             }
-            off += row;
         }
     }
     return true;
 }
 
-bool FrameAssembly::write(int index, std::string &err)
+bool FrameAssembly::write(int index, std::vector<uint8_t> &samples, bool &disk_full,
+                          std::string &err)
 {
+    disk_full = false;
     auto it = frames_in_flight_.find(index);
     if (it == frames_in_flight_.end()) {
         err = strf("internal error: frame %d has no pixels", frames_[size_t(index)]);
@@ -103,23 +188,27 @@ bool FrameAssembly::write(int index, std::string &err)
     }
     Pending &p = it->second;
     if (!p.values.empty())
-        p.quantizer->dither(p.values, width_, height_, p.rgb);
+        p.quantizer->dither(p.values, width_, height_, p.samples);
+    std::vector<uint8_t> bytes;
+    if (!encode_image(format_.oiio, format_.compression, width_, height_, format_.pixels,
+                      p.samples.data(), bytes, err))
+        return false;
     std::string tmp = temp_path(index), dst = final_path(index);
-    if (!write_targa(tmp, width_, height_, p.rgb.data(), err)) {
-        unlink(tmp.c_str());
+    if (!write_file_durably(tmp, bytes.data(), bytes.size(), err)) {
+        disk_full = errno == ENOSPC || errno == EDQUOT;
         return false;
     }
-    // Data on disk before the name appears: a frame under its final name is complete.
-    int fd = open(tmp.c_str(), O_RDONLY);
-    if (fd >= 0) {
-        fsync(fd);
-        close(fd);
-    }
+    // Only a complete file gets the final name (rename replaces a damaged one atomically).
     if (rename(tmp.c_str(), dst.c_str()) != 0) {
         sys_fail(err, "rename " + tmp + " to " + dst);
         unlink(tmp.c_str());
         return false;
     }
+    if (!sync_dir(dir_.path(), err) || !dir_.record(base_name(dst), pixels_hash(p.samples), err)) {
+        disk_full = errno == ENOSPC || errno == EDQUOT;
+        return false;
+    }
+    samples.swap(p.samples);
     frames_in_flight_.erase(it);
     return true;
 }

@@ -68,23 +68,6 @@ void Cluster::wait_for_hosts(size_t want, double timeout)
     }
 }
 
-int Cluster::hostfile_hosts(const std::string &hostfile)
-{
-    FILE *f = fopen(hostfile.c_str(), "r");
-    if (!f)
-        return 0;
-    int n = 0;
-    char line[1024];
-    while (fgets(line, sizeof line, f)) {
-        char name[512];
-        if (sscanf(line, " %511s", name) == 1 && name[0] != '#' && name[0] != '*' &&
-            name[0] != '&')
-            n++;
-    }
-    fclose(f);
-    return n;
-}
-
 bool Cluster::spawn_on(HostInfo &host, int count)
 {
     if (count <= 0 || host.excluded || !host.alive)

@@ -48,12 +48,9 @@ public:
     void stop() { vm_.stop(); }
     bool embedded() const { return vm_.embedded(); }
 
-    // Hosts a pvmd host file starts (lines that are not comments, defaults or '&' entries).
-    static int hostfile_hosts(const std::string &hostfile);
     int my_host() const { return my_dtid_; }
 
-    // Wait (bounded) until the machine has `want` hosts: a private pvmd adds the hosts of its
-    // host file in the background.
+    // Wait (bounded) until the machine has `want` hosts (hosts added from the console).
     void wait_for_hosts(size_t want, double timeout);
 
     // Spawn `count` slaves (program slave_prog) on host; returns false if none started.

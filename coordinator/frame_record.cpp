@@ -31,6 +31,17 @@ bool parse_rect(const std::string &s, Rect &r)
 
 } // namespace
 
+size_t bytes_per_pixel(const std::string &encoding)
+{
+    if (encoding == "rgb8")
+        return 3;
+    if (encoding == "rgb16")
+        return 6;
+    if (encoding == "rgbf" || encoding == "rgbl")
+        return 12;
+    return 0;
+}
+
 bool parse_record_header(const std::string &line, FrameRecord &rec, size_t &payload_bytes,
                          std::string &err)
 {
@@ -89,8 +100,8 @@ bool parse_record_header(const std::string &line, FrameRecord &rec, size_t &payl
         }
         // Unknown keys are ignored: a newer renderer may say more.
     }
-    if (!have_frame || !have_bytes || !have_rects ||
-        (rec.encoding != "rgb8" && rec.encoding != "rgbf")) {
+    size_t per_pixel = bytes_per_pixel(rec.encoding);
+    if (!have_frame || !have_bytes || !have_rects || per_pixel == 0) {
         err = "frame record lacks frame, rects, bytes or a known encoding: '" +
               line.substr(0, 120) + "'";
         return false;
@@ -98,9 +109,9 @@ bool parse_record_header(const std::string &line, FrameRecord &rec, size_t &payl
     size_t pixels = 0;
     for (const Rect &r : rec.rects)
         pixels += size_t(r.area());
-    size_t expected = pixels * (rec.encoding == "rgb8" ? 3 : 12);
+    size_t expected = pixels * per_pixel;
     // rgbf is followed by its quantizer table, so it is longer than the pixels.
-    if (rec.encoding == "rgb8" ? payload_bytes != expected : payload_bytes < expected) {
+    if (rec.encoding == "rgbf" ? payload_bytes < expected : payload_bytes != expected) {
         err = strf("frame record of frame %d has %zu bytes for %zu pixels", rec.frame,
                    payload_bytes, pixels);
         return false;

@@ -5,7 +5,10 @@
 //   FCFRAME 1 frame=N rays=R parse=S trace=S encoding=rgb8 rects=K x0,y0,x1,y1 ... bytes=B\n
 //   <B bytes: per rectangle, rows top to bottom, 3 bytes R,G,B a pixel>
 // encoding=rgbf (diffusion dithering, patch 0022) carries 3 little-endian floats a pixel (the
-// values the Targa writer quantizes) followed by the quantizer (see dither.h).
+// values the Targa writer quantizes) followed by the quantizer (see dither.h). Patch 0030 adds
+// the encodings of other output formats: rgb16 (3 little-endian 16-bit words a pixel, as the
+// PNG writer stores 9 to 16 bits) and rgbl (3 little-endian floats a pixel, the linear values
+// the OpenEXR writer converts to half); rgb8 also carries PNG's 5 to 8 bits as it stores them.
 #pragma once
 
 #include <cstdint>
@@ -20,7 +23,7 @@ struct FrameRecord {
     int frame = 0;
     double rays = 0;                // -1 when POV-Ray sent no statistics
     double parse_seconds = 0, trace_seconds = 0;
-    std::string encoding;           // "rgb8" or "rgbf"
+    std::string encoding;           // "rgb8", "rgb16", "rgbl" or "rgbf"
     std::vector<Rect> rects;
     std::vector<uint8_t> data;      // the payload, as sent
 };
@@ -39,6 +42,9 @@ private:
     std::string buf_;
     size_t pos_ = 0;
 };
+
+// Bytes a pixel takes in an encoding (rgbf: without its quantizer); 0 for an unknown one.
+size_t bytes_per_pixel(const std::string &encoding);
 
 // Parse one header line (without its newline) into record (all but data); payload_bytes is
 // the size of the data that follows. Returns false with err on a malformed header.

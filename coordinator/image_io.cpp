@@ -12,15 +12,22 @@ namespace fc {
 
 namespace {
 
-typedef int (*WriteTarga)(const char *, int, int, const unsigned char *, char *, size_t);
-typedef int (*ImageSize)(const char *, int *, int *, int *);
+typedef int (*EncodeFn)(const char *, int, int, int, const void *, const char *,
+                        unsigned char **, size_t *, char *, size_t);
+typedef void (*FreeFn)(void *);
+typedef int (*ReadFn)(const char *, int, int *, int *, int *, void **, char *, size_t);
+typedef void (*ToHalfFn)(const float *, uint16_t *, size_t);
+typedef void (*FromHalfFn)(const uint16_t *, float *, size_t);
 
 struct Plugin {
     std::thread loader;
     std::mutex mutex;
     bool started = false;
-    WriteTarga write = nullptr;
-    ImageSize size = nullptr;
+    EncodeFn encode = nullptr;
+    FreeFn free = nullptr;
+    ReadFn read = nullptr;
+    ToHalfFn to_half = nullptr;
+    FromHalfFn from_half = nullptr;
     std::string error;
 
     // A master that ends early (bad scene) must not leave the loader running.
@@ -38,10 +45,15 @@ struct Plugin {
             error = std::string("cannot load ") + dlerror();
             return;
         }
-        write = reinterpret_cast<WriteTarga>(dlsym(h, "fc_image_write_targa"));
-        size = reinterpret_cast<ImageSize>(dlsym(h, "fc_image_size"));
-        if (!write || !size)
-            error = path + " lacks fc_image_write_targa or fc_image_size";
+        encode = reinterpret_cast<EncodeFn>(dlsym(h, "fc_image_encode"));
+        free = reinterpret_cast<FreeFn>(dlsym(h, "fc_image_free"));
+        read = reinterpret_cast<ReadFn>(dlsym(h, "fc_image_read"));
+        to_half = reinterpret_cast<ToHalfFn>(dlsym(h, "fc_image_float_to_half"));
+        from_half = reinterpret_cast<FromHalfFn>(dlsym(h, "fc_image_half_to_float"));
+        if (!encode || !free || !read || !to_half || !from_half) {
+            error = path + " is from another version of fc-master (a function is missing)";
+            encode = nullptr;
+        }
     }
 };
 
@@ -51,21 +63,33 @@ Plugin &plugin()
     return p;
 }
 
-// Wait for the background load (or load now).
-Plugin &ready()
+// Wait for the background load (or load now); false with err when the plugin is unusable.
+bool ready(Plugin *&out, std::string &err)
 {
     Plugin &p = plugin();
-    std::lock_guard<std::mutex> lock(p.mutex);
-    if (!p.started) {
-        p.started = true;
-        p.load();
-    } else if (p.loader.joinable()) {
-        p.loader.join();
+    {
+        std::lock_guard<std::mutex> lock(p.mutex);
+        if (!p.started) {
+            p.started = true;
+            p.load();
+        } else if (p.loader.joinable()) {
+            p.loader.join();
+        }
     }
-    return p;
+    out = &p;
+    if (!p.encode) {
+        err = p.error;
+        return false;
+    }
+    return true;
 }
 
 } // namespace
+
+size_t pixel_type_bytes(PixelType t)
+{
+    return t == PixelType::U8 ? 1 : 2;
+}
 
 void preload_image_io()
 {
@@ -77,26 +101,61 @@ void preload_image_io()
     p.loader = std::thread([&p] { p.load(); });
 }
 
-bool write_targa(const std::string &path, int width, int height, const uint8_t *rgb,
-                 std::string &err)
+bool encode_image(const std::string &format, const std::string &compression, int width,
+                  int height, PixelType type, const void *pixels, std::vector<uint8_t> &out,
+                  std::string &err)
 {
-    Plugin &p = ready();
-    if (!p.write) {
-        err = p.error;
+    Plugin *p = nullptr;
+    if (!ready(p, err))
         return false;
-    }
+    unsigned char *bytes = nullptr;
+    size_t size = 0;
     char msg[1024] = "";
-    if (!p.write(path.c_str(), width, height, rgb, msg, sizeof msg)) {
-        err = "writing " + path + ": " + msg;
+    if (!p->encode(format.c_str(), width, height, int(type), pixels, compression.c_str(), &bytes,
+                   &size, msg, sizeof msg)) {
+        err = "encoding " + format + ": " + msg;
         return false;
     }
+    out.assign(bytes, bytes + size);
+    p->free(bytes);
     return true;
 }
 
-bool image_size(const std::string &path, int &width, int &height, int &channels)
+bool read_image(const std::string &path, PixelType type, int &width, int &height, int &channels,
+                std::vector<uint8_t> &pixels, std::string &err)
 {
-    Plugin &p = ready();
-    return p.size && p.size(path.c_str(), &width, &height, &channels) != 0;
+    Plugin *p = nullptr;
+    if (!ready(p, err))
+        return false;
+    void *buf = nullptr;
+    char msg[1024] = "";
+    if (!p->read(path.c_str(), int(type), &width, &height, &channels, &buf, msg, sizeof msg)) {
+        err = msg;
+        return false;
+    }
+    size_t n = size_t(width) * size_t(height) * 3 * pixel_type_bytes(type);
+    const uint8_t *b = static_cast<const uint8_t *>(buf);
+    pixels.assign(b, b + n);
+    p->free(buf);
+    return true;
+}
+
+bool floats_to_half(const float *in, uint16_t *out, size_t n, std::string &err)
+{
+    Plugin *p = nullptr;
+    if (!ready(p, err))
+        return false;
+    p->to_half(in, out, n);
+    return true;
+}
+
+bool half_to_floats(const uint16_t *in, float *out, size_t n, std::string &err)
+{
+    Plugin *p = nullptr;
+    if (!ready(p, err))
+        return false;
+    p->from_half(in, out, n);
+    return true;
 }
 
 } // namespace fc

@@ -1,20 +1,38 @@
-// image_io.h - fc-master's image files, through OpenImageIO loaded as a plugin (fc-image.so
-// beside fc-master; see image_plugin.cpp for why).
+// image_io.h - fc-master's image encoding and decoding, through OpenImageIO loaded as a plugin
+// (fc-image.so beside fc-master; see image_plugin.cpp for why).
+//
+// Images are 3-channel, rows top first, with samples of one PixelType. Encoding goes into
+// memory: the caller writes the bytes itself (write_file_durably in util.h), so that a full
+// disk is reported as such and never leaves a short file under a frame's name.
 #pragma once
 
 #include <cstdint>
 #include <string>
+#include <vector>
 
 namespace fc {
+
+// Sample types of stored pixels (the numbers are the plugin's).
+enum class PixelType { U8 = 0, U16 = 1, Half = 2 };
+
+size_t pixel_type_bytes(PixelType t);
 
 // Start loading the plugin on a background thread (call early; the calls below wait for it).
 void preload_image_io();
 
-// Write an 8-bit RGB Targa; false with err on failure (the plugin missing included).
-bool write_targa(const std::string &path, int width, int height, const uint8_t *rgb,
-                 std::string &err);
+// Encode width x height pixels in an OpenImageIO format ("targa", "png", "openexr") with
+// compression ("" = default) into out. False with err (the plugin missing included).
+bool encode_image(const std::string &format, const std::string &compression, int width,
+                  int height, PixelType type, const void *pixels, std::vector<uint8_t> &out,
+                  std::string &err);
 
-// Size and channels of an image file; false if it cannot be read as an image.
-bool image_size(const std::string &path, int &width, int &height, int &channels);
+// Read a whole image file as 3 channels of type into pixels (a short or damaged file is an
+// error); channels is the file's own count. False with err.
+bool read_image(const std::string &path, PixelType type, int &width, int &height, int &channels,
+                std::vector<uint8_t> &pixels, std::string &err);
+
+// Half-float conversions, rounded as OpenEXR rounds (the plugin must be loadable).
+bool floats_to_half(const float *in, uint16_t *out, size_t n, std::string &err);
+bool half_to_floats(const uint16_t *in, float *out, size_t n, std::string &err);
 
 } // namespace fc

@@ -196,7 +196,9 @@ void Master::on_hello(int src)
     setup.renderer = renderer_;
     setup.cwd = cwd_;
     setup.options = opt_.pov;
-    setup.extra = extra_;
+    // The format first: the user named none when it is set.
+    setup.extra = format_options_;
+    setup.extra.insert(setup.extra.end(), extra_.begin(), extra_.end());
     setup.width = scene_.width;
     setup.height = scene_.height;
     setup.digits = scene_.digits;
@@ -220,10 +222,27 @@ void Master::on_hello(int src)
 bool Master::frame_finished(int index)
 {
     std::string err;
-    if (!assembly_->write(index, err)) {
-        fatal(err);
+    std::vector<uint8_t> samples;
+    bool disk_full = false;
+    if (!assembly_->write(index, samples, disk_full, err)) {
+        std::string msg = strf("cannot write frame %d: %s", scene_.frames[size_t(index)],
+                               err.c_str());
+        if (disk_full) {
+            preview_.stop();    // its files would only take what a frame needs
+            unsigned long long avail = 0;
+            std::string ignored;
+            free_bytes(outdir_, avail, ignored);
+            int missing = int(scene_.frames.size()) - resumed_ - rendered_ - skipped_;
+            msg += strf("\nfc-master: the disk holding %s is full (%s free). The %d frame(s) "
+                        "there are complete; free some space and run the same command again to "
+                        "render the other %d",
+                        outdir_.c_str(), human_bytes(double(avail)).c_str(), resumed_ + rendered_,
+                        missing);
+        }
+        fatal(msg);
         return false;
     }
+    preview_.add(index, samples);
     frame_stats_[size_t(index)].finished_at = now() - start_;
     rendered_++;
     ShelloutResult r = shellouts_.run(Shellouts::PostFrame, scene_.frames[size_t(index)],
@@ -245,6 +264,7 @@ void Master::on_frame(int src)
     FrameResult fr;
     SlaveInfo *s = cluster_.slave(src);
     if (!unpack(fr)) {
+        report_.clear_line();
         fprintf(stderr, "fc-master: warning: malformed FC_FRAME from t%x\n", unsigned(src));
         return;
     }
@@ -256,6 +276,7 @@ void Master::on_frame(int src)
         valid = fr.tiles[k] >= 0 && fr.tiles[k] < sched_->tiles() &&
                 sched_->tile(fr.tiles[k]) == fr.rects[k];
     if (!valid) {
+        report_.clear_line();
         fprintf(stderr, "fc-master: warning: unexpected frame %d of job %d from t%x\n",
                 fr.frame, fr.job, unsigned(src));
         return;
@@ -281,6 +302,18 @@ void Master::on_frame(int src)
     double pixels = 0;
     for (const Rect &r : fr.rects)
         pixels += double(r.area());
+    hs.pixels += pixels;
+    if (!extra_.empty()) {
+        // What fc saved: its first frame in a renderer is traced in full, the yardstick.
+        savings_.rays_spent += std::max(0.0, fr.rays);
+        savings_.seconds_spent += fr.trace_seconds;
+        pixels_traced_ += pixels;
+        if (fr.fresh) {
+            fresh_rays_ += std::max(0.0, fr.rays);
+            fresh_seconds_ += fr.trace_seconds;
+            fresh_pixels_ += pixels;
+        }
+    }
     // A fresh renderer with frame coherence traced and recorded everything: no measure of
     // the slave's speed on coherent frames.
     if (!(fr.fresh && !extra_.empty()))
@@ -328,6 +361,18 @@ void Master::on_fail(int src)
         s->last_msg = now();
     std::string host = s ? s->host : "?";
     std::string what = f.status == -1 ? "slave error" : describe_status(f.status);
+    last_failure_ = "on " + host + ": " + first_line(f.message);
+    if (f.job < 0) {
+        // The slave could not start (no room for its directory, say); its exit follows and
+        // it is replaced, up to a host's failure limit.
+        report_.clear_line();
+        fprintf(stderr, "fc-master: warning: slave t%x on host %s: %s\n", unsigned(src),
+                host.c_str(), first_line(f.message).c_str());
+        host_stat(host).failures++;
+        if (s && cluster_.host_failed(*s))
+            leave_out_host(s->dtid, first_line(f.message));
+        return;
+    }
     if (job_stats_.count(f.job))
         job_stats_[f.job].status = "failed";
     job_slave_.erase(f.job);
@@ -337,6 +382,9 @@ void Master::on_fail(int src)
         return;
     }
     // Not the scene's fault: try the job elsewhere, leave out a host that keeps failing.
+    int fi = index_of(f.frame);
+    if (fi >= 0)
+        frame_stats_[size_t(fi)].retried = true;
     int failures = sched_->job_failed(f.job, now());
     host_stat(host).failures++;
     if (failures >= Schedule::kRetries) {
@@ -359,7 +407,7 @@ void Master::leave_out_host(int dtid, const std::string &last_error)
     if (!h)
         return;
     report_.clear_line();
-    fprintf(stderr, "fc-master: warning: host %s failed %d jobs and is left out (last: %s)\n",
+    fprintf(stderr, "fc-master: warning: host %s failed %d times and is left out (last: %s)\n",
             h->name.c_str(), h->failures, last_error.c_str());
     host_stat(h->name).excluded = true;
     for (auto &kv : cluster_.slaves()) {
@@ -378,6 +426,9 @@ void Master::slave_gone(SlaveInfo &s, const std::string &why, bool respawn)
     if (s.state == SlaveState::Gone)
         return;
     s.state = SlaveState::Gone;
+    for (auto &kv : sched_->jobs())
+        if (kv.second.live && kv.second.slave == s.tid && !sched_->frame_done(kv.second.index))
+            frame_stats_[size_t(kv.second.index)].retried = true;
     std::vector<int> lost = sched_->remove_slave(s.tid);
     for (int id : lost) {
         job_slave_.erase(id);
@@ -477,17 +528,64 @@ void Master::check_timeouts()
     }
 }
 
+ProgressState Master::progress_state() const
+{
+    ProgressState p;
+    p.elapsed = start_ > 0 ? now() - start_ : 0;
+    p.resumed = resumed_;
+    p.frames_todo = int(scene_.frames.size()) - resumed_;
+    p.frames_done = rendered_ + skipped_;
+    // Only this run's work: the tiles of frames already there are neither done nor to do.
+    long tiles = sched_->tiles();
+    long todo = tiles * long(p.frames_todo);
+    long done = sched_->cells_done() - tiles * long(resumed_);
+    p.fraction = todo > 0 ? double(std::max(0L, done)) / double(todo) : 1;
+    if (p.fraction > 0.02 && p.fraction < 1)
+        p.eta = p.elapsed * (1 - p.fraction) / p.fraction;
+    std::set<int> flight;
+    for (auto &kv : sched_->jobs())
+        if (kv.second.live)
+            flight.insert(scene_.frames[size_t(kv.second.index)]);
+    p.in_flight.assign(flight.begin(), flight.end());
+    p.frame_pixels = double(scene_.area.area());
+    std::map<std::string, HostProgress> live;
+    for (auto &kv : const_cast<Cluster &>(cluster_).slaves()) {
+        const SlaveInfo &sl = kv.second;
+        if (sl.state == SlaveState::Gone)
+            continue;
+        HostProgress &h = live[sl.host];
+        h.name = sl.host;
+        h.slaves++;
+        p.slaves++;
+        if (sched_->live_jobs(kv.first) > 0) {
+            h.busy++;
+            p.busy++;
+        }
+    }
+    for (auto &kv : live) {
+        auto it = host_stats_.find(kv.first);
+        if (it != host_stats_.end())
+            kv.second.pixels = it->second.pixels;
+        p.hosts.push_back(kv.second);
+    }
+    return p;
+}
+
 void Master::progress()
 {
-    int busy = 0, alive = 0;
-    for (auto &kv : cluster_.slaves()) {
-        if (kv.second.state == SlaveState::Gone)
-            continue;
-        alive++;
-        busy += sched_->live_jobs(kv.first) > 0;
+    // The summary says when it is done: progress never shows a finished run.
+    if (sched_->finished())
+        return;
+    report_.progress(progress_state());
+}
+
+void Master::flush_preview(bool force)
+{
+    std::string err;
+    if (!preview_.flush(now(), force, err)) {
+        report_.clear_line();
+        fprintf(stderr, "fc-master: warning: the preview is turned off: %s\n", err.c_str());
     }
-    double frac = cells_total_ > 0 ? double(sched_->cells_done()) / double(cells_total_) : 1;
-    report_.progress(now() - start_, sched_->frames_done(), sched_->frames(), frac, busy, alive);
 }
 
 void Master::fatal(const std::string &msg)
@@ -495,6 +593,7 @@ void Master::fatal(const std::string &msg)
     if (failed_)
         return;     // report the first error only
     failed_ = true;
+    error_ = msg;
     report_.clear_line();
     fprintf(stderr, "fc-master: %s", msg.c_str());
     if (msg.empty() || msg.back() != '\n')
@@ -573,6 +672,7 @@ int Master::loop()
             case FC_HOSTDEL: on_host_delete(); break;
             case FC_HOSTADD: on_host_add(); break;
             default:
+                report_.clear_line();
                 fprintf(stderr, "fc-master: warning: unexpected message %s (%d) from t%x\n",
                         tag_name(tag), tag, unsigned(src));
             }
@@ -586,8 +686,10 @@ int Master::loop()
         if (!planned_)
             dispatch();
         check_timeouts();
+        flush_preview(false);
         if (cluster_.live_slaves() == 0 && !sched_->finished() && !failed_) {
-            fatal("no slave is left to render the remaining frames");
+            fatal("no slave is left to render the remaining frames" +
+                  (last_failure_.empty() ? std::string() : " (last failure " + last_failure_ + ")"));
             break;
         }
         progress();

@@ -13,7 +13,10 @@
 #include "assembly.h"
 #include "cluster.h"
 #include "master_options.h"
+#include "output_dir.h"
+#include "output_format.h"
 #include "povray.h"
+#include "preview.h"
 #include "report.h"
 #include "schedule.h"
 #include "shellout.h"
@@ -34,6 +37,9 @@ private:
     bool resolve_programs();
     bool probe();
     bool prepare_output();
+    Manifest manifest() const;
+    bool resume_frames(bool fresh, bool adopt, std::vector<bool> &replace);
+    bool check_space(const std::vector<bool> &replace);
     bool start_cluster();
 
     // The receive loop and its handlers, one per tag.
@@ -56,6 +62,9 @@ private:
     void leave_out_host(int dtid, const std::string &last_error);
     void check_timeouts();
     void progress();
+    void flush_preview(bool force);
+    ProgressState progress_state() const;
+    RunSummary run_summary(bool ok, double elapsed) const;
     void fatal(const std::string &msg);
     void shutdown_slaves();
     void finish(bool ok);
@@ -66,7 +75,12 @@ private:
     Report report_;
     std::string renderer_, cwd_, outdir_, tmpdir_;
     std::vector<std::string> extra_;
+    std::vector<std::string> format_options_;   // the format when the user named none (+FN)
     SceneInfo scene_;
+    ResolvedOptions resolved_;          // POV-Ray's resolved options (Create_Ini)
+    OutputFormat format_;
+    OutputDir outdir_obj_;              // lock, manifest and journal of the output directory
+    Preview preview_;
     Shellouts shellouts_;
     std::vector<Rect> tiles_;
     std::unique_ptr<Schedule> sched_;
@@ -81,6 +95,10 @@ private:
     int max_frames_held_ = 0;           // most frames in the master's memory at once
     long messages_ = 0;                 // messages received
     int exit_code_ = 0;
+    std::string error_;                 // the first fatal error
+    std::string last_failure_;          // the last host-side failure ("on HOST: message")
+    Savings savings_;                   // what fc saved (rays and trace time spent so far)
+    double fresh_rays_ = 0, fresh_seconds_ = 0, fresh_pixels_ = 0, pixels_traced_ = 0;
     std::string vm_kind_ = "none";      // "private" or "running" once started
     int resumed_ = 0, rendered_ = 0;
     long cells_total_ = 0;

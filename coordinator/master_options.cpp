@@ -5,6 +5,7 @@
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <cstring>
 #include <set>
 
 #include "util.h"
@@ -20,8 +21,10 @@ const char *const kHelp =
     "Render a POV-Ray animation on the hosts of a PVM virtual machine.\n"
     "\n"
     "POV-Ray options and INI files pass through unchanged (+W320 +H240 +KFI1 +KFF45 ...).\n"
-    "Frames are written to DIR under POV-Ray's own names (24-bit Targa); frames already\n"
-    "complete in DIR are not rendered again.\n"
+    "Frames are written to DIR under POV-Ray's own names, in the format POV-Ray would write\n"
+    "(Targa unless +FN, +FE, +FC or an output name ending in .png or .exr says otherwise);\n"
+    "frames already complete in DIR are not rendered again, unless the scene, its options\n"
+    "or the renderer changed (then --force).\n"
     "\n"
     "Options:\n"
     "  -o, --output DIR        output directory (default: where POV-Ray would write)\n"
@@ -30,7 +33,8 @@ const char *const kHelp =
     "  --ranges N              initial frame ranges: sequence (default: one per slave),\n"
     "                          hybrid (default: one per two slaves)\n"
     "  --slaves N              slaves per host (default: one per core)\n"
-    "  --hostfile FILE         pvmd host file for a private virtual machine\n"
+    "  --hostfile FILE         pvmd host file: its hosts are added to the virtual machine\n"
+    "                          (each must be added, or nothing renders)\n"
     "  --pvmd-name NAME        host name of a private pvmd (-nNAME; needed to add hosts\n"
     "                          when this host's name resolves to a loopback address)\n"
     "  --private               always start a private pvmd, even if one runs\n"
@@ -44,6 +48,9 @@ const char *const kHelp =
     "  --nice N                run the renderer with this nice increment (default 0)\n"
     "  --progress SECONDS      interval of progress lines when stderr is no terminal (10)\n"
     "  --quiet                 no progress output\n"
+    "  --force                 render every frame again, even if DIR holds frames of another\n"
+    "                          scene or options (each is replaced when its new one is complete)\n"
+    "  --no-preview            no DIR/preview/latest.png and contact-sheet.png\n"
     "  --stats FILE            write per-frame and per-job statistics as JSON\n"
     "  --help                  show this help\n";
 
@@ -105,7 +112,8 @@ Options parse_options(int argc, char **argv)
             has_value = true;
         }
         static const std::set<std::string> flags = {"--private", "--no-fc", "--no-duplicates",
-                                                    "--no-local-slaves", "--quiet"};
+                                                    "--no-local-slaves", "--quiet", "--force",
+                                                    "--no-preview"};
         static const std::set<std::string> valued = {
             "--output", "--division", "--tile", "--ranges", "--slaves", "--hostfile", "--pvmd-name",
             "--povray", "--slave", "--timeout", "--nice", "--progress", "--stats"};
@@ -117,6 +125,8 @@ Options parse_options(int argc, char **argv)
             else if (name == "--no-duplicates") o.duplicates = false;
             else if (name == "--no-local-slaves") o.local_slaves = false;
             else if (name == "--quiet") o.quiet = true;
+            else if (name == "--force") o.force = true;
+            else if (name == "--no-preview") o.preview = false;
             continue;
         }
         if (!valued.count(name))
@@ -141,6 +151,17 @@ Options parse_options(int argc, char **argv)
             if (!parse_int(value, 1, 1024, o.slaves))
                 usage_error("--slaves must be a whole number from 1 to 1024, not '" + value + "'");
         } else if (name == "--hostfile") {
+            // A host file that cannot be read is a mistake on the command line, not a reason
+            // to render on this host alone.
+            FILE *f = fopen(value.c_str(), "r");
+            if (!f)
+                usage_error("--hostfile " + value + ": " + strerror(errno));
+            char probe;
+            bool readable = fread(&probe, 1, 1, f) == 1 || !ferror(f);
+            int e = errno;
+            fclose(f);
+            if (!readable)
+                usage_error("--hostfile " + value + ": " + strerror(e));
             o.hostfile = value;
         } else if (name == "--pvmd-name") {
             o.pvmd_name = value;

@@ -26,6 +26,8 @@ struct Options {
     int nice = 0;
     double progress = 10;
     bool quiet = false;
+    bool force = false;         // render every frame again, whatever the output directory holds
+    bool preview = true;        // DIR/preview/latest.png and contact-sheet.png
     std::string stats;
     std::vector<std::string> pov;   // POV-Ray options, in order
 };

@@ -32,27 +32,6 @@ std::string absolute(const std::string &path)
     return std::string(cwd) + "/" + path;
 }
 
-bool make_dirs(const std::string &dir, std::string &err)
-{
-    std::string acc;
-    size_t pos = 0;
-    while (pos <= dir.size()) {
-        size_t slash = dir.find('/', pos);
-        if (slash == std::string::npos)
-            slash = dir.size();
-        acc = dir.substr(0, slash);
-        if (!acc.empty() && mkdir(acc.c_str(), 0777) != 0 && errno != EEXIST)
-            return sys_fail(err, "mkdir " + acc);
-        pos = slash + 1;
-    }
-    struct stat st;
-    if (stat(dir.c_str(), &st) != 0 || !S_ISDIR(st.st_mode)) {
-        err = dir + " is not a directory";
-        return false;
-    }
-    return true;
-}
-
 } // namespace
 
 HostStat &Master::host_stat(const std::string &name)
@@ -119,17 +98,44 @@ bool Master::probe()
         return false;
     }
     // Both questions to POV-Ray at once: each start of povray-fc costs a tenth of a second.
+    // The resolved options are asked twice, with Targa and with PNG put before the user's
+    // options: where the two answers differ, the user named no format.
     double limit = std::max(30.0, opt_.timeout);
-    std::string scene_err, ini_err;
-    bool ini_ok = false;
-    ResolvedOptions ini;
+    std::string scene_err, ini_err, png_err;
+    bool ini_ok = false, png_ok = false;
+    ResolvedOptions ini, png;
+    if (mkdir((tmpdir_ + "/png").c_str(), 0700) != 0) {
+        perror(("fc-master: mkdir " + tmpdir_ + "/png").c_str());
+        return false;
+    }
     std::thread resolved([&] {
-        ini_ok = probe_resolved_options(renderer_, opt_.pov, cwd_, tmpdir_, limit, ini, ini_err);
+        ini_ok = probe_resolved_options(renderer_, "+FT", opt_.pov, cwd_, tmpdir_, limit, ini,
+                                        ini_err);
     });
-    bool scene_ok = probe_scene(renderer_, opt_.pov, cwd_, tmpdir_, limit, scene_, scene_err);
+    std::thread resolved_png([&] {
+        png_ok = probe_resolved_options(renderer_, "+FN", opt_.pov, cwd_, tmpdir_ + "/png",
+                                        limit, png, png_err);
+    });
+    bool scene_ok = probe_scene(renderer_, "+FT", opt_.pov, cwd_, tmpdir_, limit, scene_, scene_err);
     resolved.join();
-    err = !scene_ok ? scene_err : ini_err;
-    if (scene_ok && ini_ok && !set_frames(scene_, ini, err))
+    resolved_png.join();
+    err = !scene_ok ? scene_err : !ini_ok ? ini_err : png_err;
+    ini_ok = ini_ok && png_ok;
+    if (scene_ok && ini_ok && ini["Output_File_Type"] != png["Output_File_Type"]) {
+        // No format named: Targa, fc-master's default (the paper's), unless the output name
+        // ends as a PNG or OpenEXR file does; then that format, so that +Oclk.png gives
+        // clk1.png as POV-Ray names PNG frames, not clk.png1.tga.
+        std::string option = format_from_name(ini);
+        if (option != "+FT") {
+            ini["Output_File_Type"] = option.substr(2);
+            format_options_ = {option};
+            scene_ = SceneInfo();
+            scene_ok = probe_scene(renderer_, option, opt_.pov, cwd_, tmpdir_, limit, scene_, err);
+        }
+    }
+    if (scene_ok && ini_ok &&
+        (!output_format(ini, format_, err) || !split_output_name(scene_, format_.ext, err) ||
+         !set_frames(scene_, ini, err)))
         ini_ok = false;
     if (!scene_ok || !ini_ok) {
         fprintf(stderr, "fc-master: %s", err.c_str());
@@ -141,6 +147,7 @@ bool Master::probe()
     // the channel's patches come after fc's.
     if (opt_.fc)
         extra_.push_back(kFrameCoherenceOption);
+    resolved_ = ini;
     read_shellouts(ini, shellouts_);
     shellouts_.permitted = scene_.shellouts_permitted;
     shellouts_.width = scene_.width;
@@ -154,18 +161,141 @@ bool Master::probe()
     return true;
 }
 
-bool Master::prepare_output()
+// What makes the frames what they are, for the output directory's manifest: the renderer,
+// the scene file and its contents, and POV-Ray's resolved options except those that cannot
+// change a pixel (display, console, threads, which frames of the animation this run renders).
+Manifest Master::manifest() const
 {
-    outdir_ = opt_.output.empty() ? dir_name(scene_.output_name) : opt_.output;
+    static const char *const kHarmless[] = {
+        "Create_Ini", "Frame_Channel", "Frame_Control", "Display", "Display_Gamma",
+        "Pause_When_Done", "Verbose", "Work_Threads", "Subset_Start_Frame", "Subset_End_Frame",
+        "Output_File_Name", "Input_File_Name", "Test_Abort", "Test_Abort_Count", "Draw_Vistas",
+        "Preview_Start_Size", "Preview_End_Size", "All_Console", "All_File", "Debug_Console",
+        "Debug_File", "Fatal_Console", "Fatal_File", "Render_Console", "Render_File",
+        "Statistic_Console", "Statistic_File", "Warning_Console", "Warning_File",
+        "Frame_Coherence", "Frame_Coherence_Grid", "Frame_Coherence_Stats",
+        "Frame_Coherence_Mask", "Pre_Scene_Command", "Pre_Frame_Command", "Post_Frame_Command",
+        "Post_Scene_Command", "User_Abort_Command", "Fatal_Error_Command", "Pre_Scene_Return",
+        "Pre_Frame_Return", "Post_Frame_Return", "Post_Scene_Return", "User_Abort_Return",
+        "Fatal_Error_Return"};
+    Manifest m;
+    m["renderer"] = scene_.banner.empty() ? renderer_ : scene_.banner;
+    auto in = resolved_.find("Input_File_Name");
+    std::string scene = in == resolved_.end() ? "" : in->second;
+    std::string path = !scene.empty() && scene[0] == '/' ? scene : cwd_ + "/" + scene;
+    m["scene"] = absolute(path);
+    std::string text, err;
+    m["scene contents"] = read_text(path, text, err)
+                              ? strf("%016llx", (unsigned long long)hash_bytes(text.data(), text.size()))
+                              : "(unreadable)";
+    for (auto &kv : resolved_) {
+        bool harmless = false;
+        for (const char *h : kHarmless)
+            harmless = harmless || kv.first == h;
+        if (!harmless)
+            m["option " + kv.first] = kv.second;
+    }
+    return m;
+}
+
+// Resume: which frames the output directory already holds, complete and correct.
+bool Master::resume_frames(bool fresh, bool adopt, std::vector<bool> &replace)
+{
+    std::vector<std::string> damaged;
+    int adopted = 0;
+    for (size_t i = 0; i < scene_.frames.size(); i++) {
+        std::string path = assembly_->final_path(int(i));
+        if (!file_exists(path))
+            continue;
+        std::string why;
+        std::vector<uint8_t> pixels;
+        if (fresh || !assembly_->verify(int(i), adopt, why, pixels)) {
+            replace[i] = true;
+            if (!fresh)
+                damaged.push_back(base_name(path) + " again: " + why);
+            continue;
+        }
+        frame_stats_[i].resumed = true;
+        sched_->mark_frame_done(int(i));
+        resumed_++;
+        if (adopt) {
+            std::string err;
+            if (!outdir_obj_.record(base_name(path), FrameAssembly::pixels_hash(pixels), err)) {
+                fprintf(stderr, "fc-master: %s\n", err.c_str());
+                return false;
+            }
+            adopted++;
+        }
+        preview_.add(int(i), pixels);
+    }
+    for (size_t k = 0; k < damaged.size() && k < 5; k++)
+        fprintf(stderr, "fc-master: warning: rendering %s\n", damaged[k].c_str());
+    if (damaged.size() > 5)
+        fprintf(stderr, "fc-master: warning: ... and %zu more frame(s) that are not complete "
+                        "and correct\n", damaged.size() - 5);
+    if (adopted > 0 && !opt_.quiet)
+        fprintf(stderr, "fc-master: keeping %d frame(s) already in %s (complete, but made without "
+                        "fc-master's record of the run; --force renders them again)\n",
+                adopted, outdir_.c_str());
+    return true;
+}
+
+// Before anything renders: room for the frames still to write, at their encoded size.
+bool Master::check_space(const std::vector<bool> &replace)
+{
+    int todo = 0, replaced = 0;
+    for (size_t i = 0; i < scene_.frames.size(); i++) {
+        if (frame_stats_[i].resumed)
+            continue;
+        todo++;
+        replaced += replace[i] ? 1 : 0;
+    }
+    if (todo == 0)
+        return true;
+    bool exact = false;
+    double per = double(assembly_->frame_bytes(exact));
+    // A frame that replaces one already there reuses its space; one temporary file at a time.
+    double need = per * double(todo - replaced) + per;
+    unsigned long long avail = 0;
     std::string err;
-    if (!make_dirs(outdir_, err)) {
+    if (!free_bytes(outdir_, avail, err)) {
         fprintf(stderr, "fc-master: output directory: %s\n", err.c_str());
         return false;
     }
-    outdir_ = absolute(outdir_);
+    if (double(avail) >= need + preview_.max_bytes())
+        return true;
+    if (double(avail) >= need) {
+        // The frames come first.
+        fprintf(stderr, "fc-master: warning: no room for the preview in %s (it needs up to %s "
+                        "more): turned off\n", outdir_.c_str(),
+                human_bytes(preview_.max_bytes()).c_str());
+        preview_.stop();
+        return true;
+    }
+    std::string what = strf("%d frame(s) of %s%s need %s, %s is free", todo,
+                            exact ? "" : "up to ", human_bytes(per).c_str(),
+                            human_bytes(need).c_str(), human_bytes(double(avail)).c_str());
+    if (exact || double(avail) < per) {
+        fprintf(stderr, "fc-master: not enough space in %s: %s\n", outdir_.c_str(), what.c_str());
+        return false;
+    }
+    fprintf(stderr, "fc-master: warning: %s may run out of space: %s (uncompressed; %s frames "
+                    "are usually smaller)\n", outdir_.c_str(), what.c_str(),
+            format_.name.c_str());
+    return true;
+}
+
+bool Master::prepare_output()
+{
+    outdir_ = absolute(opt_.output.empty() ? dir_name(scene_.output_name) : opt_.output);
+    std::string err;
     std::string stem = base_name(scene_.stem);
-    assembly_.reset(new FrameAssembly(outdir_, stem, scene_.digits, scene_.width, scene_.height,
-                                      scene_.frames));
+    if (!outdir_obj_.open(outdir_, stem + format_.ext, err)) {
+        fprintf(stderr, "fc-master: %s\n", err.c_str());
+        return false;
+    }
+    assembly_.reset(new FrameAssembly(outdir_obj_, format_, stem, scene_.digits, scene_.width,
+                                      scene_.height, scene_.frames));
     assembly_->remove_stale_temps();
     sched_.reset(new Schedule(tiles_, int(scene_.frames.size()), opt_.division));
     sched_->set_cheap_moves(extra_.empty());
@@ -175,14 +305,43 @@ bool Master::prepare_output()
         FrameStat fs;
         fs.frame = scene_.frames[i];
         fs.file = base_name(assembly_->final_path(int(i)));
-        if (assembly_->exists_complete(int(i))) {
-            fs.resumed = true;
-            sched_->mark_frame_done(int(i));
-            resumed_++;
-        }
         frame_stats_.push_back(fs);
     }
-    return true;
+    if (opt_.preview)
+        preview_.start(outdir_ + "/preview", scene_.width, scene_.height, format_.pixels,
+                       int(scene_.frames.size()));
+
+    // Frames of another render (scene, options or renderer changed) must not be mixed in.
+    Manifest now = manifest();
+    std::vector<std::string> diffs;
+    if (outdir_obj_.has_previous())
+        diffs = outdir_obj_.differences(now);
+    int present = 0;
+    for (size_t i = 0; i < scene_.frames.size(); i++)
+        present += file_exists(assembly_->final_path(int(i))) ? 1 : 0;
+    if (!diffs.empty() && present > 0 && !opt_.force) {
+        std::string list;
+        for (size_t k = 0; k < diffs.size() && k < 6; k++)
+            list += "  " + diffs[k] + "\n";
+        if (diffs.size() > 6)
+            list += strf("  ... and %zu more\n", diffs.size() - 6);
+        fprintf(stderr, "fc-master: the %d frame(s) in %s were rendered with other settings:\n%s"
+                        "fc-master: use --force to render every frame again (each replaced as it "
+                        "completes), or another output directory\n",
+                present, outdir_.c_str(), list.c_str());
+        return false;
+    }
+    bool fresh = opt_.force || !diffs.empty();
+    // Frames in a directory without a record (written by POV-Ray itself, or by an older
+    // fc-master) are kept when they decode completely; with a record, only recorded ones.
+    bool adopt = !outdir_obj_.has_previous() && !fresh;
+    if (!outdir_obj_.start_run(now, fresh, err)) {
+        fprintf(stderr, "fc-master: output directory %s is not writable: %s\n", outdir_.c_str(),
+                err.c_str());
+        return false;
+    }
+    std::vector<bool> replace(scene_.frames.size(), false);
+    return resume_frames(fresh, adopt, replace) && check_space(replace);
 }
 
 bool Master::start_cluster()
@@ -195,15 +354,10 @@ bool Master::start_cluster()
         return false;
     }
     vm_kind_ = cluster_.embedded() ? "private" : "running";
-    // A private pvmd adds its host file's hosts in the background: wait (bounded) for them,
-    // or the master's own slaves could finish a short render alone.
-    size_t want = 1;
-    if (!hostfile.empty() && cluster_.embedded())
-        want += size_t(Cluster::hostfile_hosts(hostfile));
-    if (!opt_.local_slaves)
-        want = std::max(want, size_t(2));
-    if (want > 1)
-        cluster_.wait_for_hosts(want, std::max(30.0, opt_.timeout / 2));
+    // The host file's hosts were added before pvm_config (an error names any that failed).
+    // Without local slaves, wait (bounded) for a host to render on.
+    if (!opt_.local_slaves && cluster_.hosts().size() < 2)
+        cluster_.wait_for_hosts(2, std::max(30.0, opt_.timeout / 2));
     spawn_time_ = now();
     if (!cluster_.spawn_all(opt_.local_slaves, opt_.slaves)) {
         fprintf(stderr, "fc-master: no slave could be started\n");
@@ -214,9 +368,48 @@ bool Master::start_cluster()
     return true;
 }
 
+RunSummary Master::run_summary(bool ok, double elapsed) const
+{
+    RunSummary r;
+    r.ok = ok;
+    r.error = error_;
+    r.elapsed = elapsed;
+    r.rendered = rendered_;
+    r.resumed = resumed_;
+    r.skipped = skipped_;
+    r.total = int(scene_.frames.size());
+    r.division = division_name(opt_.division);
+    r.virtual_machine = vm_kind_;
+    r.hosts = host_stats_;
+    for (auto &kv : r.hosts) {
+        auto it = host_frames_.find(kv.first);
+        kv.second.frames = it == host_frames_.end() ? 0 : int(it->second.size());
+    }
+    for (const FrameStat &f : frame_stats_) {
+        if (f.resumed)
+            continue;
+        if (f.retried)
+            r.retried++;
+        if (f.finished_at >= 0) {
+            r.frame_seconds.push_back(f.seconds);
+            r.frame_numbers.push_back(f.frame);
+        }
+    }
+    r.lost = ok ? 0 : r.total - r.rendered - r.resumed - r.skipped;
+    r.savings = savings_;
+    if (fresh_pixels_ > 0 && pixels_traced_ > fresh_pixels_) {
+        r.savings.known = true;
+        r.savings.rays_full = fresh_rays_ / fresh_pixels_ * pixels_traced_;
+        r.savings.seconds_full = fresh_seconds_ / fresh_pixels_ * pixels_traced_;
+    }
+    return r;
+}
+
 void Master::finish(bool ok)
 {
+    flush_preview(true);
     if (!opt_.stats.empty() && sched_) {
+        RunSummary r = run_summary(ok, start_ > 0 ? now() - start_ : 0.0);
         for (auto &kv : job_stats_)
             if (kv.second.status == "running")
                 kv.second.status = "stopped";
@@ -237,7 +430,9 @@ void Master::finish(bool ok)
         head += strf("  \"max_frames_held\": %d,\n", max_frames_held_);
         head += strf("  \"frame_coherence\": %s,\n", extra_.empty() ? "false" : "true");
         head += strf("  \"virtual_machine\": \"%s\",\n  \"hosts_used\": %d,\n",
-                     vm_kind_.c_str(), int(cluster_.hosts().size()));
+                     vm_kind_.c_str(), int(host_stats_.size()));
+        head += strf("  \"format\": %s,\n  \"bits_per_color\": %d,\n",
+                     Report::json_string(format_.name).c_str(), format_.bits);
         struct rusage ru;
         getrusage(RUSAGE_SELF, &ru);
         double cpu = double(ru.ru_utime.tv_sec) + ru.ru_utime.tv_usec / 1e6 +
@@ -249,6 +444,16 @@ void Master::finish(bool ok)
         head += strf("  \"elapsed\": %.3f,\n", start_ > 0 ? now() - start_ : 0.0);
         head += strf("  \"frames_total\": %d,\n  \"frames_rendered\": %d,\n  \"frames_resumed\": %d,\n",
                      int(scene_.frames.size()), rendered_, resumed_);
+        head += strf("  \"frames_retried\": %d,\n  \"frames_lost\": %d,\n  \"frames_skipped\": %d,\n",
+                     r.retried, r.lost, r.skipped);
+        head += "  \"error\": " + (ok ? std::string("null") : Report::json_string(error_)) + ",\n";
+        if (r.savings.known)
+            head += strf("  \"fc_saved\": {\"rays_spent\": %.0f, \"rays_without_fc\": %.0f, "
+                         "\"trace_seconds_spent\": %.3f, \"trace_seconds_first_frame_rate\": %.3f},\n",
+                         r.savings.rays_spent, r.savings.rays_full, r.savings.seconds_spent,
+                         r.savings.seconds_full);
+        else
+            head += "  \"fc_saved\": null,\n";
         std::string err;
         if (!report_.write_json(opt_.stats, head, frame_stats_, job_stats_, host_stats_, err))
             fprintf(stderr, "fc-master: cannot write statistics: %s\n", err.c_str());
@@ -299,14 +504,8 @@ int Master::run()
         }
     }
     finish(rc == 0);
-    if (rc == 0 && !opt_.quiet) {
-        for (auto &kv : host_stats_)
-            kv.second.frames = int(host_frames_[kv.first].size());
-        fputs(report_.summary(elapsed, rendered_, resumed_, division_name(opt_.division),
-                              host_stats_).c_str(), stderr);
-        fprintf(stderr, "  (%zu host(s) of a %s virtual machine)\n", cluster_.hosts().size(),
-                vm_kind_ == "private" ? "private" : "running");
-    }
+    if (!opt_.quiet)
+        fputs(report_.summary(run_summary(rc == 0, elapsed)).c_str(), stderr);
     return rc;
 }
 

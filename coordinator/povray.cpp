@@ -82,23 +82,24 @@ int frame_digits(int final_frame, bool cyclic)
     return digits;
 }
 
-std::string frame_file_name(const std::string &stem, int digits, int frame)
+std::string frame_file_name(const std::string &stem, int digits, int frame, const std::string &ext)
 {
     if (digits <= 0)
-        return stem + ".tga";
-    return stem + strf("%0*d", digits, frame) + ".tga";
+        return stem + ext;
+    return stem + strf("%0*d", digits, frame) + ext;
 }
 
-bool probe_scene(const std::string &renderer, const std::vector<std::string> &options,
-                 const std::string &cwd, const std::string &tmpdir, double timeout,
-                 SceneInfo &info, std::string &err)
+bool probe_scene(const std::string &renderer, const std::string &format,
+                 const std::vector<std::string> &options, const std::string &cwd,
+                 const std::string &tmpdir, double timeout, SceneInfo &info, std::string &err)
 {
     std::string inc = tmpdir + "/fc-probe.inc";
     if (!write_text(inc, strf("#error \"%s\"\n", kProbeMarker), err))
         return false;
-    std::vector<std::string> argv = {renderer};
+    // The format goes before the user's options: it holds unless they name another.
+    std::vector<std::string> argv = {renderer, format};
     argv.insert(argv.end(), options.begin(), options.end());
-    argv.insert(argv.end(), {"-D", "+FT", "-UA", "+HI" + inc});
+    argv.insert(argv.end(), {"-D", "-UA", "+HI" + inc});
     for (const char *cmd : kShelloutOptions)
         argv.push_back(std::string(cmd) + "=");
     argv.push_back(std::string("Pre_Scene_Command=") + kProbeShellout);
@@ -118,6 +119,8 @@ bool probe_scene(const std::string &renderer, const std::vector<std::string> &op
         const std::string &l = lines[i];
         int a, b, c, d, e, f;
         char on[8];
+        if (info.banner.empty() && l.find("Ray Tracer Version") != std::string::npos)
+            info.banner = trim(l);
         if (l.find(kProbeMarker) != std::string::npos)
             marker = true;
         else if (sscanf(l.c_str(), " Initial Frame: %d Final Frame: %d", &a, &b) == 2)
@@ -132,7 +135,8 @@ bool probe_scene(const std::string &renderer, const std::vector<std::string> &op
             info.area = Rect{e - 1, c - 1, f, d};
             have_res = true;
         } else if (starts_with(trim(l), "Output file..........")) {
-            std::string joined = join_until(lines, i, " bpp Targa");
+            // "Output file..........NAME, 24 bpp Targa", wrapped at 80 columns.
+            std::string joined = join_until(lines, i, " bpp");
             size_t start = joined.find("Output file..........") + strlen("Output file..........");
             size_t end = joined.rfind(", ");
             if (end != std::string::npos && end > start) {
@@ -154,14 +158,19 @@ bool probe_scene(const std::string &renderer, const std::vector<std::string> &op
                   info.height);
         return false;
     }
+    return true;
+}
 
-    // Name: POV-Ray printed the first frame's name; strip ".tga" and the padded frame number.
+bool split_output_name(SceneInfo &info, const std::string &ext, std::string &err)
+{
+    // POV-Ray printed the first frame's name: strip the extension and the padded frame number.
     std::string name = info.output_name;
-    if (name.size() < 4 || name.compare(name.size() - 4, 4, ".tga") != 0) {
-        err = "unexpected output file name from POV-Ray: " + name;
+    if (name.size() < ext.size() || name.compare(name.size() - ext.size(), ext.size(), ext) != 0) {
+        err = "unexpected output file name from POV-Ray: " + name + " (expected " + ext + ")";
         return false;
     }
-    name.resize(name.size() - 4);
+    name.resize(name.size() - ext.size());
+    info.ext = ext;
     info.frames.clear();
     if (info.animated) {
         info.digits = frame_digits(info.final_frame, info.cyclic);
@@ -196,12 +205,13 @@ std::string ini_value(const std::string &v)
 
 } // namespace
 
-bool probe_resolved_options(const std::string &renderer, const std::vector<std::string> &options,
-                            const std::string &cwd, const std::string &tmpdir, double timeout,
-                            ResolvedOptions &out, std::string &err)
+bool probe_resolved_options(const std::string &renderer, const std::string &format,
+                            const std::vector<std::string> &options, const std::string &cwd,
+                            const std::string &tmpdir, double timeout, ResolvedOptions &out,
+                            std::string &err)
 {
     std::string ini = tmpdir + "/resolved.ini";
-    std::vector<std::string> argv = {renderer};
+    std::vector<std::string> argv = {renderer, format};
     argv.insert(argv.end(), options.begin(), options.end());
     argv.push_back("+GI" + ini);
     argv.push_back("Frame_Channel=" + tmpdir + "/no-such-directory/channel");

@@ -29,28 +29,36 @@ struct SceneInfo {
     int first_frame = 0;            // first frame of the subset (from the output name)
     std::vector<int> frames;        // frames to render (subset, step applied); {0} for a still
     std::string output_name;        // POV-Ray's output file name for the first frame
-    std::string stem;               // output_name without frame number and ".tga"
+    std::string stem;               // output_name without frame number and extension
+    std::string ext;                // the extension (".tga", ".png", ".exr")
     int digits = 0;                 // frame number digits in names (0 for a still)
+    std::string banner;             // POV-Ray's version line (identifies the renderer)
     bool shellouts_permitted = false;   // povray.conf allows shell-out commands
 };
 
-// Run `renderer options... -D +FT -UA +HI<probe.inc>` in cwd (tmpdir holds the probe include,
+// Run `renderer FORMAT options... -D -UA +HI<probe.inc>` in cwd (FORMAT, e.g. +FT, is the
+// format unless the options name one; tmpdir holds the probe include,
 // it must be readable under POV-Ray's I/O restrictions, e.g. below /tmp), with the user's
 // shell-outs replaced (the probe must not run them) and a harmless pre-scene command that
 // tells whether povray.conf allows shell-outs. On success fills info; on failure err holds
-// POV-Ray's own error lines.
-bool probe_scene(const std::string &renderer, const std::vector<std::string> &options,
-                 const std::string &cwd, const std::string &tmpdir, double timeout,
-                 SceneInfo &info, std::string &err);
+// POV-Ray's own error lines. Fills all but the names and frames (split_output_name, set_frames).
+bool probe_scene(const std::string &renderer, const std::string &format,
+                 const std::vector<std::string> &options, const std::string &cwd,
+                 const std::string &tmpdir, double timeout, SceneInfo &info, std::string &err);
 
 // POV-Ray's resolved options as its Create_Ini writes them (key -> value, quotes removed):
-// runs `renderer options... +GI<ini> Frame_Channel=<a path that cannot be opened>`, which
+// runs `renderer FORMAT options... +GI<ini> Frame_Channel=<a path that cannot be opened>`, which
 // writes the INI file and stops before anything runs (patch 0020 opens the channel first).
 // A renderer without the frame channel writes none and is refused here.
 typedef std::map<std::string, std::string> ResolvedOptions;
-bool probe_resolved_options(const std::string &renderer, const std::vector<std::string> &options,
-                            const std::string &cwd, const std::string &tmpdir, double timeout,
-                            ResolvedOptions &out, std::string &err);
+bool probe_resolved_options(const std::string &renderer, const std::string &format,
+                            const std::vector<std::string> &options, const std::string &cwd,
+                            const std::string &tmpdir, double timeout, ResolvedOptions &out,
+                            std::string &err);
+
+// From the first frame's output name and the format's extension: stem, digits and first frame
+// (or a still's single frame). False with err when the name does not fit.
+bool split_output_name(SceneInfo &info, const std::string &ext, std::string &err);
 
 // The frames of an animation: from info.first_frame to the subset's end, as
 // AnimationProcessing computes it from the resolved options (Subset_End_Frame as a frame or a
@@ -63,9 +71,10 @@ bool set_frames(SceneInfo &info, const ResolvedOptions &ini, std::string &err);
 bool run_collect(const std::vector<std::string> &argv, const std::string &cwd, double timeout,
                  std::vector<std::string> &lines, int &status, std::string &err);
 
-// Output file name of frame (POV-Ray's scheme: stem + frame zero-padded to digits + ".tga";
-// a still image has no number).
-std::string frame_file_name(const std::string &stem, int digits, int frame);
+// Output file name of frame (POV-Ray's scheme: stem + frame zero-padded to digits + ext; a
+// still image has no number).
+std::string frame_file_name(const std::string &stem, int digits, int frame,
+                            const std::string &ext);
 
 // Digits POV-Ray uses for frame numbers: those of the final frame (+1 when cyclic).
 int frame_digits(int final_frame, bool cyclic);

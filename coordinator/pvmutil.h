@@ -9,6 +9,7 @@
 #include <sys/types.h>
 
 #include <string>
+#include <vector>
 
 namespace fc {
 
@@ -18,10 +19,11 @@ std::string pvm_error(int code);
 class VirtualMachine {
 public:
     // Enrol in the user's running virtual machine, or start a private one (always when
-    // force_private). hostfile (may be empty) is passed to a private pvmd, and so is name
-    // (-nNAME: the master host's name, which must not resolve to a loopback address when
-    // other hosts are added). Sets err and returns false on failure. On success mytid() is
-    // valid.
+    // force_private), then add the hosts of hostfile (may be empty; a private pvmd also gets
+    // its per-host options). name (-nNAME) is the master host's name for a private pvmd,
+    // which must not resolve to a loopback address when other hosts are added. Sets err and
+    // returns false on failure, naming every host that could not be added and why. On
+    // success mytid() is valid.
     bool start(bool force_private, const std::string &hostfile, const std::string &name,
                double timeout, std::string &err);
 
@@ -33,6 +35,7 @@ public:
     const std::string &tmpdir() const { return tmpdir_; }
 
 private:
+    bool add_hosts(const std::string &hostfile, std::string &err);
     bool start_private(const std::string &hostfile, const std::string &name, double timeout,
                        std::string &err);
 
@@ -41,6 +44,9 @@ private:
     std::string tmpdir_;
     pid_t pvmd_pid_ = -1;
 };
+
+// The hosts a pvmd host file names (lines that are not comments, defaults or '&' entries).
+std::vector<std::string> hostfile_hosts(const std::string &hostfile);
 
 // Remove private PVM_TMP directories of earlier masters that are no longer running.
 void remove_stale_private_vms();

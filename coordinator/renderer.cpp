@@ -25,7 +25,7 @@ const int kControlFd = 4;           // its frame control
 // (the master runs those once, as one POV-Ray process would), output only to the channel.
 std::vector<std::string> slave_options(const RendererConfig &c, int first)
 {
-    std::vector<std::string> o = {"-D", "-P", "+FT", "-UA", "+O" + c.workdir + "/f",
+    std::vector<std::string> o = {"-D", "-P", "-UA", "+O" + c.workdir + "/f",
                                   strf("Frame_Channel=/dev/fd/%d", kChannelFd),
                                   strf("Frame_Control=/dev/fd/%d", kControlFd)};
     for (const char *cmd : kShelloutOptions)
@@ -56,8 +56,10 @@ bool Renderer::start(const RendererConfig &config, int first, std::string &err)
         close(chan[1]);
         return sys_fail(err, "pipe2");
     }
-    // The thread count goes first, so a +WT among the user's options overrides it.
-    std::vector<std::string> argv = {config.program, strf("+WT%d", std::max(1, config.threads))};
+    // The thread count and the default format (Targa, which the master writes unless the user
+    // names another) go first, so the user's +WT or +F... override them.
+    std::vector<std::string> argv = {config.program, strf("+WT%d", std::max(1, config.threads)),
+                                     "+FT"};
     argv.insert(argv.end(), config.options.begin(), config.options.end());
     argv.insert(argv.end(), config.extra.begin(), config.extra.end());
     std::vector<std::string> ours = slave_options(config, first);
@@ -145,13 +147,27 @@ bool Renderer::fail(RendererFailure &failure, bool scene_error, int status, cons
 void Renderer::classify_exit(int status, RendererFailure &failure)
 {
     std::vector<std::string> tail(tail_.begin(), tail_.end());
-    std::string excerpt = failure_excerpt(tail);
     bool exited = WIFEXITED(status);
     int code = exited ? WEXITSTATUS(status) : -1;
     failure.status = status;
     failure.scene_error = exited && code != 0 && code != 126 && code != 127 &&
                           is_scene_error(tail);
-    failure.message = excerpt.empty() ? strf("the renderer stopped during frame %d", frame_)
+    if (WIFSIGNALED(status)) {
+        // Killed (the kernel's out-of-memory killer sends SIGKILL) or crashed: only POV-Ray's
+        // own error lines tell more; its progress lines do not.
+        std::string excerpt = error_excerpt(tail);
+        int sig = WTERMSIG(status);
+        failure.message = strf("the renderer was killed by signal %d (%s) during frame %d%s", sig,
+                               strsignal(sig), frame_,
+                               sig == SIGKILL ? "; out of memory? the kernel's OOM killer sends "
+                                                "SIGKILL" : "");
+        if (!excerpt.empty())
+            failure.message += "\n" + excerpt;
+        return;
+    }
+    std::string excerpt = failure_excerpt(tail);
+    failure.message = excerpt.empty() ? strf("the renderer stopped during frame %d (%s)", frame_,
+                                             describe_status(status).c_str())
                                       : excerpt;
 }
 

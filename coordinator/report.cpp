@@ -1,19 +1,65 @@
-// report.cpp - progress lines or bar, end summary, --stats JSON.
+// report.cpp - progress display or lines, end summary, --stats JSON (see report.h).
 #include "report.h"
 
+#include <sys/ioctl.h>
 #include <unistd.h>
 
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
 
 #include "util.h"
 
 namespace fc {
 
+namespace {
+
+// Cut a line to fit in `columns` (one column is left free: writing the last one makes some
+// terminals wrap).
+std::string fit(const std::string &s, int columns)
+{
+    size_t room = size_t(std::max(1, columns - 1));
+    return s.size() <= room ? s : s.substr(0, room);
+}
+
+std::string rate(double pixels_per_second, double frame_pixels)
+{
+    std::string px = pixels_per_second >= 1e6 ? strf("%.1f Mpx/s", pixels_per_second / 1e6)
+                                              : strf("%.0f kpx/s", pixels_per_second / 1e3);
+    double fpm = frame_pixels > 0 ? pixels_per_second / frame_pixels * 60 : 0;
+    return px + (fpm >= 10 ? strf(" (%.0f frames/min)", fpm) : strf(" (%.1f frames/min)", fpm));
+}
+
+std::string frame_list(const std::vector<int> &frames, size_t room)
+{
+    std::string s;
+    for (size_t k = 0; k < frames.size(); k++) {
+        std::string next = (k ? " " : "") + std::to_string(frames[k]);
+        if (s.size() + next.size() > room) {
+            s += strf(" +%zu", frames.size() - k);
+            break;
+        }
+        s += next;
+    }
+    return s;
+}
+
+// The percentage shown: whole percents rounded down, and 100 only when everything is done.
+int percent(double fraction, bool finished)
+{
+    int p = int(std::floor(std::max(0.0, fraction) * 100));
+    return finished ? 100 : std::min(p, 99);
+}
+
+} // namespace
+
 Report::Report(double interval, bool quiet)
     : tty_(isatty(2) != 0), quiet_(quiet), interval_(interval)
 {
+    // A terminal shows the display at once; plain lines start after one interval (a line at
+    // 0:00 says nothing).
+    last_ = tty_ ? -1e9 : 0;
 }
 
 std::string Report::duration(double s)
@@ -26,56 +72,175 @@ std::string Report::duration(double s)
     return strf("%ld:%02ld", t / 60, t % 60);
 }
 
-void Report::progress(double elapsed, int frames_done, int frames_total, double fraction, int busy,
-                      int slaves)
+int Report::terminal_columns()
+{
+    const char *env = getenv("COLUMNS");
+    if (env && atoi(env) > 0)
+        return atoi(env);
+    struct winsize ws;
+    if (ioctl(2, TIOCGWINSZ, &ws) == 0 && ws.ws_col > 0)
+        return ws.ws_col;
+    return 80;
+}
+
+namespace {
+
+int terminal_rows()
+{
+    const char *env = getenv("LINES");
+    if (env && atoi(env) > 0)
+        return atoi(env);
+    struct winsize ws;
+    if (ioctl(2, TIOCGWINSZ, &ws) == 0 && ws.ws_row > 0)
+        return ws.ws_row;
+    return 24;
+}
+
+} // namespace
+
+std::vector<std::string> Report::display(const ProgressState &p, int columns, int rows)
+{
+    bool finished = p.frames_done >= p.frames_todo;
+    int pc = percent(p.fraction, finished);
+    std::string tail = strf(" %3d%%  %d/%d frames", pc, p.frames_done, p.frames_todo);
+    if (p.resumed)
+        tail += strf(" (+%d there)", p.resumed);
+    tail += "  " + duration(p.elapsed) + "  ETA " + duration(p.eta);
+    // The bar takes what the words leave, 10 to 30 columns.
+    int bar = std::min(30, std::max(10, columns - 1 - 2 - int(tail.size())));
+    int filled = int(p.fraction * bar);
+    if (!finished)
+        filled = std::min(filled, bar - 1);
+    std::string line = "[" + std::string(size_t(std::max(0, filled)), '#') +
+                       std::string(size_t(bar - std::max(0, filled)), '.') + "]" + tail;
+    std::vector<std::string> out = {fit(line, columns)};
+    std::string flight = strf("%d/%d slaves busy, in flight: ", p.busy, p.slaves);
+    size_t room = size_t(std::max(8, columns - 1 - int(flight.size()) - 6));
+    out.push_back(fit(flight + (p.in_flight.empty() ? "-" : frame_list(p.in_flight, room)),
+                      columns));
+    // One line per host, as many as the terminal has room for.
+    int room_hosts = std::max(0, std::min(rows - 3, 8));
+    int shown = 0;
+    for (const HostProgress &h : p.hosts) {
+        if (shown == room_hosts) {
+            out.push_back(fit(strf("  ... %zu more host(s)", p.hosts.size() - size_t(shown)),
+                              columns));
+            break;
+        }
+        double pps = p.elapsed > 0 ? h.pixels / p.elapsed : 0;
+        out.push_back(fit(strf("  %-16s %2d slave(s) %2d busy  ", h.name.c_str(), h.slaves,
+                               std::min(h.busy, h.slaves)) + rate(pps, p.frame_pixels),
+                          columns));
+        shown++;
+    }
+    return out;
+}
+
+std::string Report::plain_line(const ProgressState &p)
+{
+    bool finished = p.frames_done >= p.frames_todo;
+    std::string s = strf("fc-master: %d/%d frames (%d%%)", p.frames_done, p.frames_todo,
+                         percent(p.fraction, finished));
+    if (p.resumed)
+        s += strf(", %d already there", p.resumed);
+    s += strf(", %zu in flight, %d/%d slaves busy, %s elapsed, ETA %s", p.in_flight.size(), p.busy,
+              p.slaves, duration(p.elapsed).c_str(), duration(p.eta).c_str());
+    double pixels = 0;
+    for (const HostProgress &h : p.hosts)
+        pixels += h.pixels;
+    if (p.elapsed > 0 && pixels > 0)
+        s += ", " + rate(pixels / p.elapsed, p.frame_pixels);
+    return s + "\n";
+}
+
+void Report::progress(const ProgressState &p)
 {
     if (quiet_)
         return;
     double every = tty_ ? 0.25 : interval_;
-    if (every <= 0 || elapsed - last_ < every)
+    if (every <= 0 || p.elapsed - last_ < every)
         return;
-    last_ = elapsed;
-    std::string eta = "-";
-    if (fraction > 0.02 && fraction < 1)
-        eta = duration(elapsed * (1 - fraction) / fraction);
-    if (tty_) {
-        const int width = 30;
-        int filled = int(fraction * width + 0.5);
-        std::string bar(size_t(filled), '#');
-        bar.append(size_t(width - filled), '.');
-        fprintf(stderr, "\r[%s] %3.0f%%  %d/%d frames  %d/%d slaves busy  %s  ETA %s ",
-                bar.c_str(), fraction * 100, frames_done, frames_total, busy, slaves,
-                duration(elapsed).c_str(), eta.c_str());
-        bar_open_ = true;
-    } else {
-        fprintf(stderr, "fc-master: %d/%d frames (%.0f%%), %d/%d slaves busy, %s elapsed, ETA %s\n",
-                frames_done, frames_total, fraction * 100, busy, slaves,
-                duration(elapsed).c_str(), eta.c_str());
+    last_ = p.elapsed;
+    if (!tty_) {
+        fputs(plain_line(p).c_str(), stderr);
+        fflush(stderr);
+        return;
     }
+    std::vector<std::string> lines = display(p, terminal_columns(), terminal_rows());
+    // Back to the first line of the last display, then each line rewritten and cleared to
+    // its end (a shorter line leaves nothing of the longer one behind).
+    std::string out = "\r";
+    if (lines_open_ > 1)
+        out += strf("\033[%dA", lines_open_ - 1);
+    for (size_t k = 0; k < lines.size(); k++)
+        out += lines[k] + "\033[K" + (k + 1 < lines.size() ? "\n" : "");
+    // A display with fewer lines than the last: clear the rest below.
+    if (int(lines.size()) < lines_open_)
+        out += "\033[J";
+    fputs(out.c_str(), stderr);
     fflush(stderr);
+    lines_open_ = int(lines.size());
 }
 
 void Report::clear_line()
 {
-    if (bar_open_) {
-        fprintf(stderr, "\r\033[K");
-        bar_open_ = false;
-    }
+    if (lines_open_ == 0)
+        return;
+    std::string out = "\r";
+    if (lines_open_ > 1)
+        out += strf("\033[%dA", lines_open_ - 1);
+    out += "\033[J";
+    fputs(out.c_str(), stderr);
+    fflush(stderr);
+    lines_open_ = 0;
 }
 
-std::string Report::summary(double elapsed, int rendered, int resumed, const std::string &division,
-                            const std::map<std::string, HostStat> &hosts) const
+std::string Report::summary(const RunSummary &r) const
 {
-    std::string s = strf("fc-master: %d frame(s) rendered", rendered);
-    if (resumed)
-        s += strf(", %d already present", resumed);
-    s += strf(" in %s, %s division\n", duration(elapsed).c_str(), division.c_str());
-    s += strf("  %-20s %6s %6s %7s %7s %14s %10s\n", "host", "slaves", "jobs", "frames",
-              "tiles", "rays", "busy");
-    for (auto &kv : hosts) {
+    std::string s;
+    if (r.ok) {
+        s = strf("fc-master: %d frame(s) rendered", r.rendered);
+        if (r.resumed)
+            s += strf(", %d already present", r.resumed);
+        if (r.skipped)
+            s += strf(", %d skipped by Pre_Frame_Command", r.skipped);
+    } else {
+        s = strf("fc-master: %s with %d of %d frame(s) done (%d rendered, %d already present), "
+                 "%d missing", r.error.empty() ? "stopped" : "failed", r.rendered + r.resumed,
+                 r.total, r.rendered, r.resumed, r.total - r.rendered - r.resumed - r.skipped);
+    }
+    s += strf(" in %s, %s division, %zu host(s) of a %s virtual machine\n",
+              duration(r.elapsed).c_str(), r.division.c_str(), r.hosts.size(),
+              r.virtual_machine.c_str());
+    if (!r.frame_seconds.empty()) {
+        std::vector<double> sorted = r.frame_seconds;
+        std::sort(sorted.begin(), sorted.end());
+        size_t slowest = size_t(std::max_element(r.frame_seconds.begin(), r.frame_seconds.end()) -
+                                r.frame_seconds.begin());
+        s += strf("  frame time (parse + trace, all its jobs): median %.2f s, fastest %.2f s, "
+                  "slowest %.2f s (frame %d)\n", sorted[sorted.size() / 2], sorted.front(),
+                  sorted.back(), r.frame_numbers[slowest]);
+    }
+    if (r.retried || r.lost)
+        s += strf("  %d frame(s) retried after a failed or lost job, %d lost\n", r.retried, r.lost);
+    if (r.savings.known && r.savings.rays_full > 0) {
+        const Savings &v = r.savings;
+        double rays = std::max(0.0, v.rays_full - v.rays_spent);
+        s += strf("  frame coherence saved about %.0f%% of the rays: %.3g of %.3g million traced\n"
+                  "    (estimated from each renderer's first frame, traced in full); trace time "
+                  "%.1f s, %.1f s at\n    the first frames' rate (an upper bound: a first frame "
+                  "also records every ray)\n",
+                  100 * rays / v.rays_full, v.rays_spent / 1e6, v.rays_full / 1e6,
+                  v.seconds_spent, v.seconds_full);
+    }
+    s += strf("  %-20s %6s %6s %7s %7s %14s %10s %16s\n", "host", "slaves", "jobs", "frames",
+              "tiles", "rays", "busy", "throughput");
+    for (auto &kv : r.hosts) {
         const HostStat &h = kv.second;
-        s += strf("  %-20s %6d %6d %7d %7d %14.0f %10s%s\n", h.name.c_str(), h.slaves, h.jobs,
-                  h.frames, h.tiles, h.rays, duration(h.busy).c_str(),
+        double pps = r.elapsed > 0 ? h.pixels / r.elapsed : 0;
+        std::string tput = pps >= 1e6 ? strf("%.1f Mpx/s", pps / 1e6) : strf("%.0f kpx/s", pps / 1e3);
+        s += strf("  %-20s %6d %6d %7d %7d %14.0f %10s %16s%s\n", h.name.c_str(), h.slaves, h.jobs,
+                  h.frames, h.tiles, h.rays, duration(h.busy).c_str(), tput.c_str(),
                   h.excluded ? "  (left out after failures)" : "");
     }
     return s;
@@ -116,9 +281,11 @@ bool Report::write_json(const std::string &path, const std::string &json_head,
         std::string hosts_json;
         for (size_t k = 0; k < host_list.size(); k++)
             hosts_json += (k ? ", " : "") + json_string(host_list[k]);
-        j += strf("    {\"frame\": %d, \"file\": %s, \"resumed\": %s, \"host\": %s, \"hosts\": [%s], "
-                 "\"rays\": %.0f, \"time\": %.3f, \"parses\": %d, \"finished_at\": %.3f, \"tiles\": [",
+        j += strf("    {\"frame\": %d, \"file\": %s, \"resumed\": %s, \"retried\": %s, "
+                 "\"host\": %s, \"hosts\": [%s], \"rays\": %.0f, \"time\": %.3f, \"parses\": %d, "
+                 "\"finished_at\": %.3f, \"tiles\": [",
                  f.frame, json_string(f.file).c_str(), f.resumed ? "true" : "false",
+                 f.retried ? "true" : "false",
                  host_list.empty() ? "null" : json_string(host_list[0]).c_str(),
                  hosts_json.c_str(), f.rays, f.seconds, f.parses, f.finished_at);
         for (size_t k = 0; k < f.cells.size(); k++) {
@@ -149,9 +316,10 @@ bool Report::write_json(const std::string &path, const std::string &json_head,
         const HostStat &h = kv.second;
         j += strf("    {\"name\": %s, \"slaves\": %d, \"jobs\": %d, \"frames\": %d, "
                  "\"tiles\": %d, \"failures\": %d, \"excluded\": %s, \"rays\": %.0f, "
-                 "\"busy\": %.3f}%s\n",
+                 "\"busy\": %.3f, \"pixels\": %.0f}%s\n",
                  json_string(h.name).c_str(), h.slaves, h.jobs, h.frames, h.tiles, h.failures,
-                 h.excluded ? "true" : "false", h.rays, h.busy, ++n < hosts.size() ? "," : "");
+                 h.excluded ? "true" : "false", h.rays, h.busy, h.pixels,
+                 ++n < hosts.size() ? "," : "");
     }
     j += "  ]\n}\n";
     std::string tmp = path + ".tmp";

@@ -39,6 +39,10 @@ public:
     int run();
     void cleanup();
 
+    // Tell the master why this slave cannot work (init failed after it learned the master),
+    // so the reason ("No space left on device") reaches the user, not only the pvmd's log.
+    void report_failure(const std::string &why);
+
 private:
     // Message handlers: one per tag the slave receives.
     void on_setup();
@@ -260,6 +264,19 @@ void Slave::fail(const JobMsg &job, const RendererFailure &f)
         g_stop = 1;
 }
 
+void Slave::report_failure(const std::string &why)
+{
+    if (master_ <= 0)
+        return;
+    JobMsg none;
+    none.job = -1;
+    none.frame = -1;
+    RendererFailure f;
+    f.status = -1;
+    f.message = "fc-slave cannot start: " + why;
+    fail(none, f);
+}
+
 void Slave::heartbeat()
 {
     double t = now();
@@ -340,6 +357,7 @@ int main(int argc, char **argv)
     std::string err;
     if (!slave.init(err)) {
         fprintf(stderr, "fc-slave: %s\n", err.c_str());
+        slave.report_failure(err);
         slave.cleanup();
         pvm_exit();
         return 2;

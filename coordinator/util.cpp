@@ -8,6 +8,7 @@
 #include <sys/prctl.h>
 #include <sys/resource.h>
 #include <sys/stat.h>
+#include <sys/statvfs.h>
 #include <sys/wait.h>
 #include <time.h>
 #include <unistd.h>
@@ -188,6 +189,27 @@ void remove_stale_dirs(const std::string &parent, const std::string &prefix)
     closedir(d);
 }
 
+bool make_dirs(const std::string &dir, std::string &err)
+{
+    std::string acc;
+    size_t pos = 0;
+    while (pos <= dir.size()) {
+        size_t slash = dir.find('/', pos);
+        if (slash == std::string::npos)
+            slash = dir.size();
+        acc = dir.substr(0, slash);
+        if (!acc.empty() && mkdir(acc.c_str(), 0777) != 0 && errno != EEXIST)
+            return sys_fail(err, "mkdir " + acc);
+        pos = slash + 1;
+    }
+    struct stat st;
+    if (stat(dir.c_str(), &st) != 0 || !S_ISDIR(st.st_mode)) {
+        err = dir + " is not a directory";
+        return false;
+    }
+    return true;
+}
+
 bool write_text(const std::string &path, const std::string &text, std::string &err)
 {
     FILE *f = fopen(path.c_str(), "w");
@@ -198,6 +220,123 @@ bool write_text(const std::string &path, const std::string &text, std::string &e
         ok = false;
     if (!ok)
         return sys_fail(err, "write " + path);
+    return true;
+}
+
+bool write_file_durably(const std::string &path, const void *data, size_t size, std::string &err)
+{
+    int fd = open(path.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0644);
+    if (fd < 0)
+        return sys_fail(err, "open " + path);
+    const char *p = static_cast<const char *>(data);
+    size_t left = size;
+    bool ok = true;
+    std::string call;
+    while (left > 0) {
+        ssize_t n = write(fd, p, left);
+        if (n < 0 && errno == EINTR)
+            continue;
+        if (n <= 0) {
+            if (n == 0)
+                errno = ENOSPC;     // a write that makes no progress: nothing fits any more
+            ok = false;
+            call = "write " + path;
+            break;
+        }
+        p += n;
+        left -= size_t(n);
+    }
+    // A full disk may only show at fsync (delayed allocation) or close (network file systems).
+    if (ok && fsync(fd) != 0) {
+        ok = false;
+        call = "fsync " + path;
+    }
+    struct stat st;
+    if (ok && fstat(fd, &st) != 0) {
+        ok = false;
+        call = "fstat " + path;
+    }
+    if (ok && st.st_size != off_t(size)) {
+        errno = EIO;
+        err = strf("%s has %lld bytes on disk, %zu were written", path.c_str(),
+                   (long long)st.st_size, size);
+        close(fd);
+        unlink(path.c_str());
+        return false;
+    }
+    int saved = errno;
+    if (close(fd) != 0 && ok) {
+        ok = false;
+        call = "close " + path;
+        saved = errno;
+    }
+    if (!ok) {
+        errno = saved;
+        sys_fail(err, call);
+        unlink(path.c_str());
+        errno = saved;
+        return false;
+    }
+    return true;
+}
+
+bool sync_dir(const std::string &dir, std::string &err)
+{
+    int fd = open(dir.c_str(), O_RDONLY | O_DIRECTORY | O_CLOEXEC);
+    if (fd < 0)
+        return sys_fail(err, "open " + dir);
+    // Some file systems cannot sync a directory (EINVAL): the rename is as durable as they get.
+    bool ok = fsync(fd) == 0 || errno == EINVAL;
+    int saved = errno;
+    close(fd);
+    errno = saved;
+    return ok || sys_fail(err, "fsync " + dir);
+}
+
+bool free_bytes(const std::string &path, unsigned long long &bytes, std::string &err)
+{
+    struct statvfs sv;
+    if (statvfs(path.c_str(), &sv) != 0)
+        return sys_fail(err, "statvfs " + path);
+    bytes = (unsigned long long)sv.f_bavail * (unsigned long long)sv.f_frsize;
+    return true;
+}
+
+std::string human_bytes(double b)
+{
+    if (b < 1024)
+        return strf("%.0f bytes", b);
+    if (b < 1024.0 * 1024)
+        return strf("%.0f KB", b / 1024);
+    if (b < 1024.0 * 1024 * 1024)
+        return strf("%.1f MB", b / (1024.0 * 1024));
+    return strf("%.2f GB", b / (1024.0 * 1024 * 1024));
+}
+
+uint64_t hash_bytes(const void *data, size_t size, uint64_t h)
+{
+    const unsigned char *p = static_cast<const unsigned char *>(data);
+    for (size_t i = 0; i < size; i++) {
+        h ^= p[i];
+        h *= 1099511628211ull;
+    }
+    return h;
+}
+
+bool read_text(const std::string &path, std::string &text, std::string &err)
+{
+    FILE *f = fopen(path.c_str(), "r");
+    if (!f)
+        return sys_fail(err, "fopen " + path);
+    text.clear();
+    char buf[65536];
+    size_t n;
+    while ((n = fread(buf, 1, sizeof buf, f)) > 0)
+        text.append(buf, n);
+    bool bad = ferror(f) != 0;
+    fclose(f);
+    if (bad)
+        return sys_fail(err, "read " + path);
     return true;
 }
 

@@ -8,6 +8,7 @@
 #include <sys/types.h>
 
 #include <cstdarg>
+#include <cstdint>
 #include <string>
 #include <vector>
 
@@ -50,8 +51,32 @@ void remove_tree(const std::string &path);
 // (left behind by a killed fc-master or fc-slave).
 void remove_stale_dirs(const std::string &parent, const std::string &prefix);
 
+// Create dir and its missing parents; false with err (strerror) unless dir is a directory.
+bool make_dirs(const std::string &dir, std::string &err);
+
 // Write text to path (truncating). Returns false with err on failure.
 bool write_text(const std::string &path, const std::string &text, std::string &err);
+
+// Write bytes to path (created or truncated, mode 0644) and make them durable: every write,
+// the fsync and the close are checked, and the file's size on disk must equal the bytes. On
+// failure the file is removed and err names the call and errno's text ("No space left on
+// device" for a full disk).
+bool write_file_durably(const std::string &path, const void *data, size_t size, std::string &err);
+
+// fsync a directory, so that a rename in it survives a crash.
+bool sync_dir(const std::string &dir, std::string &err);
+
+// Bytes available to us on the file system holding path; false with err.
+bool free_bytes(const std::string &path, unsigned long long &bytes, std::string &err);
+
+// "230 KB", "10.4 MB": a size for people.
+std::string human_bytes(double bytes);
+
+// A 64-bit FNV-1a hash of bytes (stable across versions and machines: it goes into files).
+uint64_t hash_bytes(const void *data, size_t size, uint64_t seed = 14695981039346656037ull);
+
+// Read a whole file into text; false with err.
+bool read_text(const std::string &path, std::string &text, std::string &err);
 
 // Split text into physical lines on '\n' and '\r' (POV-Ray rewrites progress lines with '\r').
 class LineSplitter {

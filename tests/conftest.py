@@ -59,14 +59,27 @@ def coordinator_cmdline(pid):
         return ""
 
 
-def load_rgb(path):
-    """8-bit RGB pixels of an image file as a numpy array (height, width, 3)."""
+def load_rgb(path, pixel_type="uint8"):
+    """RGB pixels of an image file as a numpy array (height, width, 3), read as pixel_type
+    ("uint8", "uint16", "half": the samples as stored, for 16-bit PNG and OpenEXR)."""
     import OpenImageIO as oiio
-    inp = oiio.ImageInput.open(path)
+    inp = oiio.ImageInput.open(str(path))
     assert inp, "cannot open %s: %s" % (path, oiio.geterror())
-    pixels = inp.read_image(0, 0, 0, 3, "uint8")
+    pixels = inp.read_image(0, 0, 0, 3, pixel_type)
+    error = inp.geterror()
     inp.close()
+    assert pixels is not None and not error, "cannot read %s: %s" % (path, error)
     return np.asarray(pixels)
+
+
+# What fc-master keeps in an output directory besides the frames.
+FC_MASTER_FILES = {".fc-master", "preview"}
+
+
+def frame_files(outdir):
+    """The names in an output directory that are not fc-master's own bookkeeping (its record
+    of the run and the preview), sorted."""
+    return sorted(f for f in os.listdir(outdir) if f not in FC_MASTER_FILES)
 
 
 class CoordinatorRun:
@@ -195,12 +208,20 @@ class CoordinatorReferences:
     def __init__(self, root):
         self.root = root
         self.cache = {}
+        self.dirs = {}
 
-    def frames(self, scene, options):
-        """Render `scene` with `options` in one POV-Ray process; returns {file name: pixels}."""
-        key = (scene, tuple(options))
+    def path(self, scene, options, name):
+        """The file `name` of the reference render of `scene` with `options` (rendered first
+        with frames())."""
+        return self.dirs[(scene, tuple(options))] / name
+
+    def frames(self, scene, options, pixel_type="uint8"):
+        """Render `scene` with `options` in one POV-Ray process (Targa unless the options name
+        another format); returns {file name: pixels read as pixel_type}."""
+        key = (scene, tuple(options), pixel_type)
         if key not in self.cache:
             out = self.root / ("ref%d" % len(self.cache))
+            self.dirs[(scene, tuple(options))] = out
             out.mkdir()
             stem = os.path.splitext(os.path.basename(scene))[0]
             argv = [coordinator_renderer(), scene, "-D", "+FT", "-UA",
@@ -208,7 +229,8 @@ class CoordinatorReferences:
             r = subprocess.run(argv, cwd=COORDINATOR_SCENES, capture_output=True, text=True,
                                timeout=300)
             assert r.returncode == 0, "reference render failed:\n" + r.stderr[-3000:]
-            self.cache[key] = {f: load_rgb(str(out / f)) for f in sorted(os.listdir(out))}
+            self.cache[key] = {f: load_rgb(str(out / f), pixel_type)
+                               for f in sorted(os.listdir(out))}
         return self.cache[key]
 
 

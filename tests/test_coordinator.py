@@ -14,7 +14,7 @@ import numpy as np
 import pytest
 
 from conftest import (COORDINATOR_SCENES, TOP, coordinator_cmdline, coordinator_renderer,
-                      coordinator_stats, load_rgb)
+                      coordinator_stats, frame_files, load_rgb)
 
 pytestmark = pytest.mark.usefixtures("coordinator_build")
 
@@ -27,7 +27,7 @@ SLOW = ["+W320", "+H240", "+KFI1", "+KFF16", "+A0.1", "+AM2", "+R3"]
 
 def assert_same_frames(outdir, reference, only=None):
     """outdir holds exactly the reference's frames (or the subset `only`), pixel for pixel."""
-    files = sorted(os.listdir(outdir))
+    files = frame_files(outdir)
     expected = sorted(reference) if only is None else sorted(only)
     # Invariant: output names are POV-Ray's own, and no temporary file is left over.
     assert files == expected
@@ -247,7 +247,7 @@ def test_resume_after_killing_master(coordinator, coordinator_references, tmp_pa
     p.communicate()
     # Invariant: a killed master takes its private pvmd, slaves and renderers with it.
     assert coordinator.wait_no_processes() == []
-    before = sorted(os.listdir(out))
+    before = frame_files(out)
     assert 3 <= len(before) < len(ref)
     # Invariant: only complete frames exist, and under final names only.
     assert_same_frames(out, ref, only=before)
@@ -321,7 +321,52 @@ def test_failing_host_is_left_out(coordinator, tmp_path):
     # Three failures leave the only host out; nothing is left to render with.
     assert r.returncode == 1
     assert "left out" in r.stderr and "simulated host failure" in r.stderr, r.stderr
-    assert os.listdir(out) == []
+    assert frame_files(out) == []
+    assert coordinator.wait_no_processes() == []
+
+
+def killing_renderer(tmp_path, kills):
+    """A renderer killed by SIGKILL (as the kernel's out-of-memory killer kills) 0.3 s into
+    each of the first `kills` renders fc-slave starts (kills < 0: every one), in the middle of
+    its work; POV-Ray has printed its progress lines by then."""
+    counter = tmp_path / "kills"
+    script = tmp_path / "killed-povray"
+    script.write_text(f"""#!/bin/sh
+case "$*" in *Frame_Control=*)
+  n=$(flock {counter}.lock sh -c 'n=$(cat {counter} 2>/dev/null || echo 0); n=$((n + 1)); echo $n > {counter}; echo $n')
+  if [ {kills} -lt 0 ] || [ "$n" -le {kills} ]; then (sleep 0.3; kill -9 $$) & fi
+esac
+exec {coordinator_renderer()} "$@"
+""")
+    script.chmod(0o755)
+    return script
+
+
+def test_killed_renderer_is_retried(coordinator, coordinator_references, tmp_path):
+    out = tmp_path / "out"
+    script = killing_renderer(tmp_path, 1)
+    r = coordinator.run(["--no-fc", "--povray", str(script), "--division", "sequence",
+                         "--slaves", "2", SCENE] + SLOW + ["-o", str(out)], renderer=False)
+    # Invariant: a killed renderer is the host's problem: its work is done again elsewhere.
+    assert r.returncode == 0, r.stderr
+    assert "killed by signal 9" in r.stderr and "trying again" in r.stderr, r.stderr
+    # The warning says what SIGKILL usually means (issue 9 retried, but said only "stopped").
+    assert "out of memory" in r.stderr, r.stderr
+    # Invariant: only POV-Ray's error lines are shown, never its progress lines.
+    assert "Rendered" not in r.stderr, r.stderr
+    assert_same_frames(out, coordinator_references.frames(SCENE, SLOW))
+    assert coordinator.wait_no_processes() == []
+
+
+def test_renderer_killed_every_time_fails_briefly(coordinator, tmp_path):
+    out = tmp_path / "out"
+    script = killing_renderer(tmp_path, -1)
+    r = coordinator.run(["--no-fc", "--povray", str(script), "--division", "sequence",
+                         "--slaves", "2", SCENE] + SLOW + ["-o", str(out)], renderer=False)
+    # The retry and blocklist rules end it: a tile that failed 3 times, or no host left.
+    assert r.returncode == 1
+    assert "killed by signal 9" in r.stderr and "Rendered" not in r.stderr, r.stderr
+    assert len(r.stderr.splitlines()) < 25, r.stderr
     assert coordinator.wait_no_processes() == []
 
 
@@ -368,7 +413,7 @@ def test_shellouts_run_once_as_in_one_process(coordinator, tmp_path):
     for n in range(1, 5):
         assert got.index("post-frame %d" % n) > got.index("pre-frame %d %s" % (
             n, next(w.split()[2] for w in want if w.startswith("pre-frame %d " % n))))
-    assert len(os.listdir(out)) == 4
+    assert len(frame_files(out)) == 4
     assert coordinator.wait_no_processes() == []
 
 
@@ -382,7 +427,7 @@ def test_forbidden_shellout_keeps_its_return_action(coordinator, tmp_path):
     assert r.returncode == 0, r.stderr
     assert "quit rendering" in r.stderr and "prohibited" in r.stderr
     assert not (tmp_path / "ran").exists()
-    assert not out.exists() or os.listdir(out) == []
+    assert not out.exists() or frame_files(out) == []
     assert coordinator.wait_no_processes() == []
 
 
@@ -390,10 +435,10 @@ def test_nothing_to_do_when_complete(coordinator, tmp_path):
     out = tmp_path / "out"
     args = ["--no-fc", "--quiet", SCENE, "+W64", "+H48", "+KFI1", "+KFF3", "-o", str(out)]
     assert coordinator.run(args).returncode == 0
-    mtimes = {f: os.stat(out / f).st_mtime_ns for f in os.listdir(out)}
+    mtimes = {f: os.stat(out / f).st_mtime_ns for f in frame_files(out)}
     r = coordinator.run(args)
     assert r.returncode == 0 and "nothing to render" in r.stderr
-    assert {f: os.stat(out / f).st_mtime_ns for f in os.listdir(out)} == mtimes
+    assert {f: os.stat(out / f).st_mtime_ns for f in frame_files(out)} == mtimes
 
 
 def test_killed_slave_work_is_requeued(coordinator, coordinator_references, tmp_path):
@@ -436,7 +481,7 @@ def test_interrupt_stops_everything(coordinator, coordinator_references, tmp_pat
     assert "interrupted" in err
     assert coordinator.wait_no_processes() == []
     assert_same_frames(out, coordinator_references.frames(SCENE, SLOW),
-                       only=os.listdir(out))
+                       only=frame_files(out))
 
 
 # --- bad input -------------------------------------------------------------------------------
@@ -450,7 +495,7 @@ def test_scene_that_does_not_parse(coordinator, tmp_path):
     assert r.stderr.count("Parse Error") == 1, r.stderr
     assert "broken.pov' line 9" in r.stderr
     assert "No matching } in 'sphere'" in r.stderr
-    assert os.listdir(out) == []
+    assert frame_files(out) == []
     assert coordinator.wait_no_processes() == []
 
 
@@ -465,7 +510,7 @@ def test_scene_failing_late_keeps_only_complete_frames(coordinator, coordinator_
     # Frames 1-4 have clock < 0.5 and render; whatever was finished is complete and exact.
     ref = coordinator_references.frames("fails-late.pov", ["+W64", "+H48", "+KFI1", "+KFF8",
                                                            "+SF1", "+EF4"])
-    done = os.listdir(out)
+    done = frame_files(out)
     assert set(done) <= set(ref)
     assert_same_frames(out, ref, only=done)
     assert coordinator.wait_no_processes() == []
@@ -504,7 +549,82 @@ def test_missing_program(coordinator, tmp_path, which):
                         ["-o", str(tmp_path / "out")])
     assert r.returncode == 1
     assert "/nonexistent/fc-program" in r.stderr
-    assert not (tmp_path / "out").exists() or os.listdir(tmp_path / "out") == []
+    assert not (tmp_path / "out").exists() or frame_files(tmp_path / "out") == []
+    assert coordinator.wait_no_processes() == []
+
+
+def test_missing_hostfile_is_a_usage_error(coordinator, tmp_path):
+    missing = tmp_path / "no-such-hosts"
+    r = coordinator.run(["--no-fc", "--hostfile", str(missing), SCENE] + SMALL +
+                        ["-o", str(tmp_path / "out")])
+    # Invariant: a host file that cannot be read stops the run, named, before anything runs.
+    assert r.returncode == 2
+    assert str(missing) in r.stderr and "No such file or directory" in r.stderr, r.stderr
+    assert "usage: fc-master" in r.stderr
+    assert not (tmp_path / "out").exists()
+    assert coordinator.pids() == []
+
+
+def files_only_name_lookups(tmp_path):
+    """A command prefix: run in a private mount namespace where host names resolve from
+    /etc/hosts only (no test may ask DNS)."""
+    conf = tmp_path / "nsswitch.conf"
+    lines = open("/etc/nsswitch.conf").read().splitlines()
+    conf.write_text("".join(("hosts: files" if l.startswith("hosts:") else l) + "\n"
+                            for l in lines))
+    return ["unshare", "-m", "--", "sh", "-c",
+            'mount --bind "$0" /etc/nsswitch.conf && exec "$@"', str(conf)]
+
+
+@pytest.mark.skipif(os.geteuid() != 0, reason="needs root for a private mount namespace")
+@pytest.mark.parametrize("private", [True, False], ids=["private", "running"])
+def test_host_that_cannot_be_added_is_an_error(coordinator, tmp_path, private):
+    hosts = tmp_path / "hosts"
+    hosts.write_text("# a cluster\nfc-no-such-host-1.invalid\n")
+    out = tmp_path / "out"
+    prefix = files_only_name_lookups(tmp_path)
+    env = {"PVM_ALLOW_ROOT": "1"}
+    if not private:
+        started = subprocess.run(prefix + ["pvm"], input="quit\n", env=coordinator.env(env),
+                                 capture_output=True, text=True, timeout=30)
+        assert "pvmd still running" in started.stdout + started.stderr, started
+    try:
+        r = coordinator.run(["--no-fc", "--hostfile", str(hosts), SCENE] + SMALL +
+                            ["-o", str(out)], prefix=prefix, env=env)
+    finally:
+        if not private:
+            subprocess.run(prefix + ["pvm"], input="halt\n", env=coordinator.env(env),
+                           capture_output=True, text=True, timeout=30)
+    # Invariant: the host is named with the reason, and nothing renders without it.
+    assert r.returncode == 1, r.stderr
+    assert "fc-no-such-host-1.invalid" in r.stderr and "does not resolve" in r.stderr, r.stderr
+    assert not out.exists() or frame_files(out) == []
+    assert coordinator.wait_no_processes() == []
+
+
+def test_stale_pvmd_file_is_removed(coordinator, coordinator_references, tmp_path):
+    # A pvmd killed by SIGKILL leaves its pvmd.<uid> file behind in PVM_TMP.
+    env = coordinator.env({"PVM_ALLOW_ROOT": "1"})
+    started = subprocess.run(["pvm"], input="quit\n", env=env, capture_output=True, text=True,
+                             timeout=30)
+    assert "pvmd still running" in started.stdout + started.stderr, started
+    stale = coordinator.pvm_tmp / ("pvmd.%d" % os.getuid())
+    assert stale.exists()
+    for pid in program_pids(coordinator, "pvmd"):
+        os.kill(pid, signal.SIGKILL)
+    assert coordinator.wait_no_processes() == []
+    assert stale.exists()
+    out = tmp_path / "out"
+    start = time.time()
+    r = coordinator.run(["--no-fc", "--quiet", SCENE] + SMALL + ["-o", str(out)],
+                        env={"PVM_ALLOW_ROOT": "1"})
+    # Invariant: no pvmd owns the file: it is removed, saying so, and the render goes on at
+    # once (libpvm would retry for 13 s and fail).
+    assert r.returncode == 0, r.stderr
+    assert "removed %s" % stale in r.stderr, r.stderr
+    assert not stale.exists()
+    assert time.time() - start < 10
+    assert_same_frames(out, coordinator_references.frames(SCENE, SMALL))
     assert coordinator.wait_no_processes() == []
 
 

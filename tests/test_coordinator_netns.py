@@ -14,7 +14,7 @@ import time
 
 import pytest
 
-from conftest import TOP, coordinator_stats, load_rgb
+from conftest import TOP, coordinator_stats, frame_files, load_rgb
 
 pytestmark = pytest.mark.usefixtures("coordinator_build")
 
@@ -141,7 +141,7 @@ def finish(coordinator, p, timeout=120):
 
 
 def assert_same(outdir, reference):
-    assert sorted(os.listdir(outdir)) == sorted(reference)
+    assert frame_files(outdir) == sorted(reference)
     for name, want in reference.items():
         got = load_rgb(os.path.join(outdir, name))
         # Invariant: frames rendered on several hosts equal the single-process render.
@@ -211,6 +211,26 @@ def test_host_added_while_rendering(coordinator, coordinator_references, vm, tmp
     hosts = {h["name"]: h for h in coordinator_stats(stats)["hosts"]}
     # Invariant: a host added while rendering gets slaves and work.
     assert hosts[late]["jobs"] >= 1, hosts
+
+
+def test_host_deleted_and_added_again_counts_once(coordinator, coordinator_references, vm,
+                                                  tmp_path):
+    vm.add(vm.hosts, 4)
+    out, stats = tmp_path / "out", tmp_path / "stats.json"
+    again = vm.hosts[2]
+    p = coordinator.start(["--no-fc", "--division", "frame", "--stats", str(stats), SCENE] +
+                          SLOW + ["-o", str(out)], env=vm.env)
+    time.sleep(1.0)
+    assert p.poll() is None
+    vm.console(["delete " + again])
+    vm.wait_hosts(3)
+    vm.console(["add " + again])
+    err = finish(coordinator, p)
+    assert p.returncode == 0, err + coordinator.trace()
+    assert_same(out, coordinator_references.frames(SCENE, SLOW))
+    # Invariant: a host that left and came back is one host, in the summary and the stats.
+    assert "4 host(s)" in err, err
+    assert coordinator_stats(stats)["hosts_used"] == 4
 
 
 def test_private_machine_from_hostfile(coordinator, coordinator_references, netns_hosts,

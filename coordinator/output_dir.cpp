@@ -1,0 +1,198 @@
+// output_dir.cpp - the output directory, its lock and the record of the run (see output_dir.h).
+#include "output_dir.h"
+
+#include <fcntl.h>
+#include <sys/file.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
+#include <cerrno>
+#include <cinttypes>
+#include <cstdio>
+#include <cstring>
+#include <sstream>
+
+#include "util.h"
+
+namespace fc {
+
+namespace {
+
+const char *const kMetaDir = ".fc-master";
+
+std::string one_line(const std::string &s)
+{
+    std::string out;
+    for (char c : s)
+        out += (c == '\n' || c == '\r' || c == '\t') ? ' ' : c;
+    return out;
+}
+
+} // namespace
+
+OutputDir::~OutputDir()
+{
+    if (journal_fd_ >= 0)
+        close(journal_fd_);
+    if (lock_fd_ >= 0)
+        close(lock_fd_);    // releases the lock
+}
+
+bool OutputDir::open(const std::string &dir, const std::string &run, std::string &err)
+{
+    dir_ = dir;
+    run_ = run;
+    std::string why;
+    if (!make_dirs(dir, why)) {
+        err = "output directory " + dir + ": " + why;
+        return false;
+    }
+    meta_ = dir + "/" + kMetaDir;
+    if (mkdir(meta_.c_str(), 0755) != 0 && errno != EEXIST) {
+        sys_fail(why, "mkdir " + meta_);
+        err = "output directory " + dir + " is not writable: " + why;
+        return false;
+    }
+    std::string lock = meta_ + "/lock";
+    lock_fd_ = ::open(lock.c_str(), O_RDWR | O_CREAT | O_CLOEXEC, 0644);
+    if (lock_fd_ < 0) {
+        sys_fail(why, "open " + lock);
+        err = "output directory " + dir + " is not writable: " + why;
+        return false;
+    }
+    if (flock(lock_fd_, LOCK_EX | LOCK_NB) != 0) {
+        if (errno != EWOULDBLOCK)
+            return sys_fail(err, "flock " + lock);
+        char buf[32] = "";
+        ssize_t n = pread(lock_fd_, buf, sizeof buf - 1, 0);
+        int pid = n > 0 ? atoi(buf) : 0;
+        err = strf("another fc-master%s is writing frames into %s: wait for it to finish, or use "
+                   "another output directory", pid > 0 ? strf(" (pid %d)", pid).c_str() : "",
+                   dir.c_str());
+        close(lock_fd_);
+        lock_fd_ = -1;
+        return false;
+    }
+    std::string pid = strf("%d\n", int(getpid()));
+    if (ftruncate(lock_fd_, 0) != 0 || pwrite(lock_fd_, pid.data(), pid.size(), 0) != ssize_t(pid.size())) {
+        sys_fail(why, "write " + lock);
+        err = "output directory " + dir + " is not writable: " + why;
+        return false;
+    }
+    return load(err);
+}
+
+bool OutputDir::load(std::string &err)
+{
+    std::string text;
+    std::string path = manifest_path();
+    if (file_exists(path)) {
+        if (!read_text(path, text, err))
+            return false;
+        std::istringstream in(text);
+        std::string line;
+        while (std::getline(in, line)) {
+            size_t tab = line.find('\t');
+            if (tab != std::string::npos)
+                previous_[line.substr(0, tab)] = line.substr(tab + 1);
+        }
+    }
+    path = journal_path();
+    if (file_exists(path)) {
+        if (!read_text(path, text, err))
+            return false;
+        // A line cut short by a full disk or a crash names no frame: lines are checked whole.
+        std::istringstream in(text);
+        std::string line;
+        while (std::getline(in, line)) {
+            size_t sp = line.rfind(' ');
+            if (sp == std::string::npos || line.size() - sp - 1 != 16)
+                continue;
+            char *end = nullptr;
+            uint64_t h = strtoull(line.c_str() + sp + 1, &end, 16);
+            if (end && *end == '\0')
+                frames_[line.substr(0, sp)] = h;
+        }
+    }
+    return true;
+}
+
+std::vector<std::string> OutputDir::differences(const Manifest &now) const
+{
+    std::vector<std::string> out;
+    for (auto &kv : now) {
+        auto it = previous_.find(kv.first);
+        if (it == previous_.end())
+            out.push_back(kv.first + " is new: " + kv.second);
+        else if (it->second != kv.second)
+            out.push_back(kv.first + ": " + it->second + " -> " + kv.second);
+    }
+    for (auto &kv : previous_)
+        if (!now.count(kv.first))
+            out.push_back(kv.first + " is gone (was " + kv.second + ")");
+    return out;
+}
+
+bool OutputDir::start_run(const Manifest &now, bool fresh, std::string &err)
+{
+    std::string text;
+    for (auto &kv : now)
+        text += one_line(kv.first) + "\t" + one_line(kv.second) + "\n";
+    std::string path = manifest_path(), tmp = path + ".tmp";
+    if (!write_file_durably(tmp, text.data(), text.size(), err))
+        return false;
+    if (rename(tmp.c_str(), path.c_str()) != 0) {
+        unlink(tmp.c_str());
+        return sys_fail(err, "rename " + tmp);
+    }
+    previous_ = now;
+    std::string journal = journal_path();
+    int flags = O_RDWR | O_CREAT | O_APPEND | O_CLOEXEC | (fresh ? O_TRUNC : 0);
+    journal_fd_ = ::open(journal.c_str(), flags, 0644);
+    if (journal_fd_ < 0)
+        return sys_fail(err, "open " + journal);
+    if (fresh)
+        frames_.clear();
+    // A line cut short (a full disk) must not run into the next run's first line.
+    struct stat st;
+    char last = '\n';
+    if (fstat(journal_fd_, &st) == 0 && st.st_size > 0 &&
+        pread(journal_fd_, &last, 1, st.st_size - 1) == 1 && last != '\n' &&
+        write(journal_fd_, "\n", 1) != 1)
+        return sys_fail(err, "write " + journal);
+    return true;
+}
+
+std::string OutputDir::manifest_path() const
+{
+    return meta_ + "/" + run_ + ".manifest";
+}
+
+std::string OutputDir::journal_path() const
+{
+    return meta_ + "/" + run_ + ".frames";
+}
+
+bool OutputDir::recorded(const std::string &name, uint64_t &hash) const
+{
+    auto it = frames_.find(name);
+    if (it == frames_.end())
+        return false;
+    hash = it->second;
+    return true;
+}
+
+bool OutputDir::record(const std::string &name, uint64_t hash, std::string &err)
+{
+    std::string line = strf("%s %016" PRIx64 "\n", name.c_str(), hash);
+    ssize_t n = write(journal_fd_, line.data(), line.size());
+    if (n != ssize_t(line.size())) {
+        if (n >= 0)
+            errno = ENOSPC;
+        return sys_fail(err, "write " + journal_path());
+    }
+    frames_[name] = hash;
+    return true;
+}
+
+} // namespace fc

@@ -1,0 +1,64 @@
+// output_dir.h - fc-master's output directory: created and checked before anything renders,
+// locked against a second master, and holding the record of the run.
+//
+// DIR/.fc-master/ holds, for each animation RUN written here (its frames' names without number,
+// e.g. "clk.png" for clk01.png ...: several animations may share a directory):
+//   lock          flock()ed while a master writes frames here (its pid inside, for the
+//                 message): one master per directory;
+//   RUN.manifest  what makes the frames what they are: the scene file (name and contents),
+//                 POV-Ray's resolved options that shape pixels, the renderer's version line,
+//                 one "key<TAB>value" line each; a resume whose manifest differs is refused
+//                 (--force starts over), so frames of two different renders never mix;
+//   RUN.frames    one line per frame written ("name hash"): the hash of its stored pixels, so
+//                 a resume trusts a frame only if it decodes completely to the same pixels.
+#pragma once
+
+#include <cstdint>
+#include <map>
+#include <string>
+#include <vector>
+
+namespace fc {
+
+typedef std::map<std::string, std::string> Manifest;
+
+class OutputDir {
+public:
+    ~OutputDir();
+
+    // Create dir and its parents, prove it writable by creating DIR/.fc-master and its lock,
+    // take the lock and read the record of `run`. False with err (strerror text; another
+    // master's pid when locked).
+    bool open(const std::string &dir, const std::string &run, std::string &err);
+
+    const std::string &path() const { return dir_; }
+
+    // The manifest of the frames already here (empty when there is none).
+    const Manifest &previous() const { return previous_; }
+    bool has_previous() const { return !previous_.empty(); }
+
+    // Lines saying how `now` differs from the previous manifest (none when equal).
+    std::vector<std::string> differences(const Manifest &now) const;
+
+    // Replace the manifest; with fresh, also forget every recorded frame (--force, a new run).
+    bool start_run(const Manifest &now, bool fresh, std::string &err);
+
+    // The recorded hash of a frame file (by name); false when none is recorded.
+    bool recorded(const std::string &name, uint64_t &hash) const;
+
+    // Record a frame that is complete under its final name. False with err.
+    bool record(const std::string &name, uint64_t hash, std::string &err);
+
+private:
+    bool load(std::string &err);
+    std::string manifest_path() const;
+    std::string journal_path() const;
+
+    std::string dir_, meta_, run_;
+    int lock_fd_ = -1;
+    int journal_fd_ = -1;
+    Manifest previous_;
+    std::map<std::string, uint64_t> frames_;
+};
+
+} // namespace fc

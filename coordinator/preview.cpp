@@ -1,0 +1,128 @@
+// preview.cpp - the latest frame and a contact sheet, while the render runs (see preview.h).
+#include "preview.h"
+
+#include <unistd.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <cstring>
+
+#include "util.h"
+
+namespace fc {
+
+void Preview::start(const std::string &dir, int width, int height, PixelType type, int frames)
+{
+    std::string err;
+    if (width <= 0 || height <= 0 || frames <= 0 || !make_dirs(dir, err)) {
+        if (!err.empty())
+            fprintf(stderr, "fc-master: warning: no preview: %s\n", err.c_str());
+        return;
+    }
+    on_ = true;
+    dir_ = dir;
+    width_ = width;
+    height_ = height;
+    frames_ = frames;
+    type_ = type;
+    // Reduce by an integer factor (at least 2) so the sheet stays near 4 megapixels.
+    double area = double(width) * double(height) * double(frames);
+    factor_ = std::max(2, int(std::ceil(std::sqrt(area / 4.0e6))));
+    tw_ = std::max(1, width / factor_);
+    th_ = std::max(1, height / factor_);
+    // About 16:9 overall.
+    cols_ = int(std::ceil(std::sqrt(double(frames) * th_ * 16.0 / (double(tw_) * 9.0))));
+    cols_ = std::max(1, std::min(frames, cols_));
+    rows_ = (frames + cols_ - 1) / cols_;
+    sheet_.assign(size_t(cols_ * tw_) * size_t(rows_ * th_) * 3, 0);
+}
+
+double Preview::max_bytes() const
+{
+    if (!on_)
+        return 0;
+    double latest = double(width_) * double(height_) * 3;
+    double sheet = double(cols_ * tw_) * double(rows_ * th_) * 3;
+    return 2 * (latest + sheet);
+}
+
+void Preview::to_rgb8(const std::vector<uint8_t> &samples, std::vector<uint8_t> &rgb) const
+{
+    size_t n = size_t(width_) * size_t(height_) * 3;
+    rgb.resize(n);
+    if (type_ == PixelType::U8) {
+        memcpy(rgb.data(), samples.data(), n);
+    } else if (type_ == PixelType::U16) {
+        const uint16_t *s = reinterpret_cast<const uint16_t *>(samples.data());
+        for (size_t i = 0; i < n; i++)
+            rgb[i] = uint8_t(s[i] >> 8);
+    } else {
+        std::vector<float> f(n);
+        std::string err;
+        if (!half_to_floats(reinterpret_cast<const uint16_t *>(samples.data()), f.data(), n, err))
+            return;
+        for (size_t i = 0; i < n; i++) {
+            float v = std::min(1.0f, std::max(0.0f, f[i]));
+            rgb[i] = uint8_t(std::lround(std::pow(v, 1 / 2.2f) * 255));
+        }
+    }
+}
+
+void Preview::add(int index, const std::vector<uint8_t> &samples)
+{
+    if (!on_ || index < 0 || index >= frames_ ||
+        samples.size() != size_t(width_) * size_t(height_) * 3 * pixel_type_bytes(type_))
+        return;
+    to_rgb8(samples, latest_);
+    int cx = (index % cols_) * tw_, cy = (index / cols_) * th_;
+    size_t stride = size_t(cols_ * tw_) * 3;
+    for (int y = 0; y < th_; y++) {
+        for (int x = 0; x < tw_; x++) {
+            unsigned sum[3] = {0, 0, 0};
+            for (int dy = 0; dy < factor_; dy++)
+                for (int dx = 0; dx < factor_; dx++) {
+                    const uint8_t *p = &latest_[(size_t(y * factor_ + dy) * size_t(width_) +
+                                                 size_t(x * factor_ + dx)) * 3];
+                    sum[0] += p[0], sum[1] += p[1], sum[2] += p[2];
+                }
+            uint8_t *d = &sheet_[size_t(cy + y) * stride + size_t(cx + x) * 3];
+            unsigned cells = unsigned(factor_ * factor_);
+            for (int c = 0; c < 3; c++)
+                d[c] = uint8_t((sum[c] + cells / 2) / cells);
+        }
+    }
+    dirty_ = true;
+}
+
+bool Preview::write_png(const std::string &name, int w, int h, const std::vector<uint8_t> &rgb,
+                        std::string &err)
+{
+    std::vector<uint8_t> bytes;
+    if (!encode_image("png", "zip:1", w, h, PixelType::U8, rgb.data(), bytes, err))
+        return false;
+    std::string path = dir_ + "/" + name, tmp = path + ".tmp";
+    if (!write_file_durably(tmp, bytes.data(), bytes.size(), err))
+        return false;
+    if (rename(tmp.c_str(), path.c_str()) != 0) {
+        unlink(tmp.c_str());
+        return sys_fail(err, "rename " + tmp);
+    }
+    return true;
+}
+
+bool Preview::flush(double now, bool force, std::string &err)
+{
+    if (!on_ || !dirty_ || (!force && now - last_ < kInterval))
+        return true;
+    last_ = now;
+    dirty_ = false;
+    if (!write_png("latest.png", width_, height_, latest_, err) ||
+        !write_png("contact-sheet.png", cols_ * tw_, rows_ * th_, sheet_, err)) {
+        on_ = false;
+        return false;
+    }
+    return true;
+}
+
+} // namespace fc

@@ -1,0 +1,59 @@
+// preview.h - a look at a long render while it runs: DIR/preview/latest.png (the frame
+// finished last, full size) and DIR/preview/contact-sheet.png (every frame finished so far,
+// reduced, in frame order, resumed ones included), rewritten at most every kInterval seconds
+// and at the end, each written under a temporary name and renamed (a viewer never sees half a
+// file). 8-bit PNG whatever the output format: 16-bit samples keep their high byte, OpenEXR's
+// linear values are clipped and gamma-encoded (2.2) for the eye.
+//
+// The sheet is one image held in memory (at most about 4 megapixels whatever the frame count:
+// frames are reduced by an integer factor, box-filtered); a frame is pasted in once, so the
+// cost per frame is one reduction, and a write costs one PNG encoding at low compression.
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "image_io.h"
+
+namespace fc {
+
+class Preview {
+public:
+    static constexpr double kInterval = 2.0;   // seconds between rewrites
+
+    // Turn the preview on for frames of width x height with samples of type.
+    void start(const std::string &dir, int width, int height, PixelType type, int frames);
+    bool on() const { return on_; }
+
+    // Frame index i finished (or was already complete): its stored samples.
+    void add(int index, const std::vector<uint8_t> &samples);
+
+    // Write the files if something changed and they are due (force: now). A failure turns
+    // the preview off and returns false with err (for a warning: it must never stop a render).
+    bool flush(double now, bool force, std::string &err);
+
+    // Most bytes the preview's files take on disk (uncompressed, a file and its temporary).
+    double max_bytes() const;
+
+    // Turn the preview off (its files stay as they are).
+    void stop() { on_ = false; }
+
+    const std::string &dir() const { return dir_; }
+
+private:
+    void to_rgb8(const std::vector<uint8_t> &samples, std::vector<uint8_t> &rgb) const;
+    bool write_png(const std::string &name, int w, int h, const std::vector<uint8_t> &rgb,
+                   std::string &err);
+
+    bool on_ = false;
+    std::string dir_;
+    int width_ = 0, height_ = 0, frames_ = 0;
+    PixelType type_ = PixelType::U8;
+    int factor_ = 1, cols_ = 1, rows_ = 1, tw_ = 0, th_ = 0;
+    std::vector<uint8_t> sheet_, latest_;
+    bool dirty_ = false;
+    double last_ = -1e9;
+};
+
+} // namespace fc

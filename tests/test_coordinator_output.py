@@ -1,0 +1,424 @@
+"""fc-master's output: nothing lost, nothing half written, nothing misreported.
+
+A full disk is an error that says so and leaves only complete frames under final names; the
+output directory is checked (writable, room for the frames) before anything renders; a resume
+re-renders every frame that is not complete and correct; two masters never write the same
+frames; a resume after the scene or its options changed is refused unless --force; frames are
+written in the format POV-Ray would write; a preview shows the render while it runs.
+Small file systems are tmpfs mounts (root only).
+"""
+import os
+import signal
+import subprocess
+import time
+
+import numpy as np
+import pytest
+
+from conftest import COORDINATOR_SCENES, coordinator_renderer, coordinator_stats, frame_files, load_rgb
+
+pytestmark = pytest.mark.usefixtures("coordinator_build")
+
+SCENE = "moving.pov"
+SMALL = ["+W160", "+H120", "+KFI1", "+KFF8"]
+# 24 Targa frames of 225 KB; about 0.2 s a frame per process.
+SLOW = ["+W320", "+H240", "+KFI1", "+KFF24", "+A0.1", "+AM2", "+R3"]
+
+root_only = pytest.mark.skipif(os.geteuid() != 0, reason="needs root to mount tmpfs")
+
+
+def assert_frames_exact(outdir, reference, only=None):
+    """outdir holds exactly the reference's frames (or the subset `only`), pixel for pixel,
+    and nothing else but fc-master's own files (no temporary file)."""
+    files = frame_files(outdir)
+    assert files == (sorted(reference) if only is None else sorted(only))
+    assert set(files) <= set(reference), files
+    for name in files:
+        got, want = load_rgb(os.path.join(outdir, name)), reference[name]
+        # Invariant: a frame under its final name is complete and equals one process's.
+        assert got.shape == want.shape and (got == want).all(), name
+
+
+def wait_for_frames(outdir, count, proc, timeout=60):
+    deadline = time.time() + timeout
+    while time.time() < deadline:
+        if os.path.isdir(outdir) and len([f for f in os.listdir(outdir)
+                                          if f.endswith(".tga")]) >= count:
+            return
+        assert proc.poll() is None, "fc-master ended early:\n" + proc.communicate()[1]
+        time.sleep(0.02)
+    raise AssertionError("no %d frames after %d s" % (count, timeout))
+
+
+@pytest.fixture
+def tmpfs(tmp_path):
+    """mount(name, size, readonly=False): a tmpfs below tmp_path; all unmounted at the end."""
+    mounts = []
+
+    def mount(name, size, readonly=False):
+        path = tmp_path / name
+        path.mkdir()
+        subprocess.run(["mount", "-t", "tmpfs", "-o", "size=" + size, "tmpfs", str(path)],
+                       check=True)
+        mounts.append(path)
+        if readonly:
+            subprocess.run(["mount", "-o", "remount,ro", str(path)], check=True)
+        return path
+
+    yield mount
+    for path in reversed(mounts):
+        subprocess.run(["umount", "-l", str(path)])
+
+
+def fill(directory, leave):
+    """Fill the file system of directory until about `leave` bytes are free."""
+    st = os.statvfs(directory)
+    free = st.f_bavail * st.f_frsize
+    filler = os.path.join(directory, "filler")
+    with open(filler, "wb") as f:
+        try:
+            f.write(b"\0" * max(0, free - leave))
+        except OSError:
+            pass
+    return filler
+
+
+def counting_renderer(tmp_path):
+    """A renderer that counts the renders fc-slave starts (in tmp_path/renders)."""
+    counter = tmp_path / "renders"
+    script = tmp_path / "counting-povray"
+    script.write_text(f"""#!/bin/sh
+case "$*" in *Frame_Control=*) echo x >> {counter};; esac
+exec {coordinator_renderer()} "$@"
+""")
+    script.chmod(0o755)
+    return script, counter
+
+
+# --- a full disk ------------------------------------------------------------------------------
+
+@root_only
+def test_full_disk_is_an_error_and_resume_completes(coordinator, coordinator_references,
+                                                    tmp_path, tmpfs):
+    out = tmpfs("out", "12m") / "frames"
+    ref = coordinator_references.frames(SCENE, SLOW)
+    args = ["--no-fc", "--quiet", "--division", "sequence", "--slaves", "2", SCENE] + SLOW + \
+           ["-o", str(out)]
+    p = coordinator.start(args)
+    wait_for_frames(out, 3, p)
+    filler = fill(out.parent, 64 * 1024)       # less than one frame
+    _, err = p.communicate(timeout=120)
+    # Invariant: a full disk fails the run, and the message says the disk is full.
+    assert p.returncode == 1, err
+    assert "No space left on device" in err and "is full" in err, err
+    assert coordinator.wait_no_processes() == []
+    written = frame_files(out)
+    assert 3 <= len(written) < len(ref), written
+    # Invariant: only complete frames exist, under final names, no temporary file.
+    assert_frames_exact(out, ref, only=written)
+
+    os.unlink(filler)
+    stats = tmp_path / "stats.json"
+    r = coordinator.run(args + ["--stats", str(stats)])
+    assert r.returncode == 0, r.stderr
+    assert_frames_exact(out, ref)
+    s = coordinator_stats(stats)
+    # Invariant: nothing rendered before is lost or rendered again.
+    assert s["frames_resumed"] == len(written)
+    assert s["frames_rendered"] == len(ref) - len(written)
+
+
+@root_only
+def test_slave_with_full_tmp_renders(coordinator, coordinator_references, tmp_path):
+    # The renderer of every slave sees its working directory (/tmp/fc-slave-*) on a full
+    # file system: the frame channel needs no disk, so the frames still arrive.
+    script = tmp_path / "full-tmp-povray"
+    script.write_text(f"""#!/bin/sh
+dir=
+for a; do case $a in +O/tmp/fc-slave-*) dir=$(dirname "${{a#+O}}");; esac; done
+[ -n "$dir" ] || exec {coordinator_renderer()} "$@"
+exec unshare -m sh -c 'mount -t tmpfs -o size=64k tmpfs "$0" &&
+    head -c 1000000 /dev/zero > "$0/fill" 2>/dev/null; exec "$@"' "$dir" \\
+    {coordinator_renderer()} "$@"
+""")
+    script.chmod(0o755)
+    out = tmp_path / "out"
+    r = coordinator.run(["--no-fc", "--quiet", "--povray", str(script), "--division", "frame",
+                         "--slaves", "2", SCENE] + SMALL + ["-o", str(out)], renderer=False)
+    assert r.returncode == 0, r.stderr
+    assert_frames_exact(out, coordinator_references.frames(SCENE, SMALL))
+
+
+@root_only
+def test_slave_without_room_in_tmp_says_so(coordinator, tmp_path):
+    # A slave whose /tmp has no room left for its working directory (no inode, no block):
+    # the reason reaches the user, and the render stops once the host is left out.
+    from conftest import FC_SLAVE
+    script = tmp_path / "full-tmp-slave"
+    script.write_text(f"""#!/bin/sh
+exec unshare -m sh -c '
+  keep=/run/fc-test-keep-$$; mkdir -p $keep && mount --bind "$PVM_TMP" $keep &&
+  mount -t tmpfs -o size=64k,nr_inodes=64 tmpfs /tmp && mkdir -p "$PVM_TMP" &&
+  mount --bind $keep "$PVM_TMP" && umount -l $keep && rmdir $keep
+  i=0; while touch /tmp/f$i 2>/dev/null; do i=$((i+1)); done
+  head -c 100000 /dev/zero > /tmp/fill 2>/dev/null
+  exec {FC_SLAVE}'
+""")
+    script.chmod(0o755)
+    out = tmp_path / "out"
+    r = coordinator.run(["--no-fc", "--slave", str(script), "--slaves", "1", SCENE] + SMALL +
+                        ["-o", str(out)])
+    # Invariant: the slave's own failure is shown with the system's reason, not just "exited".
+    assert r.returncode == 1, r.stderr
+    assert "mkdtemp /tmp/fc-slave-" in r.stderr and "No space left on device" in r.stderr, r.stderr
+    assert frame_files(out) == []
+    assert coordinator.wait_no_processes() == []
+
+
+# --- the output directory, checked before rendering ------------------------------------------
+
+@root_only
+def test_unwritable_output_directory_fails_before_rendering(coordinator, tmp_path, tmpfs):
+    out = tmpfs("readonly", "1m", readonly=True)
+    script, renders = counting_renderer(tmp_path)
+    r = coordinator.run(["--no-fc", "--povray", str(script), SCENE] + SMALL + ["-o", str(out)],
+                        renderer=False)
+    # Invariant: the error names the directory and the system's reason, before any render.
+    assert r.returncode == 1
+    assert str(out) in r.stderr and "Read-only file system" in r.stderr, r.stderr
+    assert "not writable" in r.stderr
+    assert not renders.exists()
+    assert coordinator.wait_no_processes() == []
+
+
+@root_only
+def test_too_little_space_fails_before_rendering(coordinator, tmp_path, tmpfs):
+    out = tmpfs("small", "2m")
+    script, renders = counting_renderer(tmp_path)
+    r = coordinator.run(["--no-fc", "--povray", str(script), SCENE] + SLOW + ["-o", str(out)],
+                        renderer=False)
+    # 24 frames of 225 KB do not fit in 2 MB: said at once, with the numbers.
+    assert r.returncode == 1
+    assert "not enough space" in r.stderr and "24 frame(s)" in r.stderr, r.stderr
+    assert "free" in r.stderr
+    assert not renders.exists()
+    assert frame_files(out) == []
+    assert coordinator.wait_no_processes() == []
+
+
+# --- resume trusts only complete and correct frames -------------------------------------------
+
+def damage(out):
+    """Cut moving2.tga in half and change one pixel of moving5.tga (same size)."""
+    cut = out / "moving2.tga"
+    data = cut.read_bytes()
+    cut.write_bytes(data[:len(data) // 2])
+    changed = out / "moving5.tga"
+    data = bytearray(changed.read_bytes())
+    data[len(data) // 2] ^= 0xff       # among the pixels, whatever the header and footer
+    changed.write_bytes(bytes(data))
+
+
+def test_resume_renders_damaged_frames_again(coordinator, coordinator_references, tmp_path):
+    out = tmp_path / "out"
+    args = ["--no-fc", "--quiet", "--slaves", "2", SCENE] + SMALL + ["-o", str(out)]
+    assert coordinator.run(args).returncode == 0
+    damage(out)
+    stats = tmp_path / "stats.json"
+    r = coordinator.run(args[1:] + ["--stats", str(stats)])
+    assert r.returncode == 0, r.stderr
+    # Invariant: a frame that is cut short or whose pixels are not those written is rendered
+    # again, with a warning that names it; the others are kept.
+    assert "moving2.tga" in r.stderr and "moving5.tga" in r.stderr, r.stderr
+    s = coordinator_stats(stats)
+    assert s["frames_resumed"] == 6 and s["frames_rendered"] == 2
+    assert_frames_exact(out, coordinator_references.frames(SCENE, SMALL))
+
+
+def test_resume_without_record_checks_each_frame(coordinator, coordinator_references,
+                                                 tmp_path):
+    # Frames that fc-master has no record of (one POV-Ray process wrote them, say) are kept
+    # when they decode completely; a short one is rendered again.
+    out = tmp_path / "out"
+    out.mkdir()
+    single = subprocess.run([coordinator_renderer(), SCENE, "-D", "+FT", "-UA",
+                             "+O%s/moving" % out] + SMALL, cwd=COORDINATOR_SCENES,
+                            capture_output=True, text=True, timeout=120)
+    assert single.returncode == 0, single.stderr
+    cut = out / "moving3.tga"
+    cut.write_bytes(cut.read_bytes()[:1000])
+    stats = tmp_path / "stats.json"
+    r = coordinator.run(["--no-fc", "--slaves", "2", "--stats", str(stats), SCENE] + SMALL +
+                        ["-o", str(out)])
+    assert r.returncode == 0, r.stderr
+    assert "moving3.tga" in r.stderr and "keeping 7 frame(s)" in r.stderr, r.stderr
+    s = coordinator_stats(stats)
+    assert s["frames_resumed"] == 7 and s["frames_rendered"] == 1
+    assert_frames_exact(out, coordinator_references.frames(SCENE, SMALL))
+
+
+# --- one master per output directory, one render per manifest --------------------------------
+
+def test_second_master_on_same_directory_is_refused(coordinator, coordinator_references,
+                                                    tmp_path):
+    out = tmp_path / "out"
+    first = coordinator.start(["--no-fc", "--quiet", "--division", "sequence", "--slaves", "2",
+                               SCENE] + SLOW + ["-o", str(out)])
+    wait_for_frames(out, 1, first)
+    r = coordinator.run(["--no-fc", "--quiet", SCENE] + SLOW + ["-o", str(out)])
+    # Invariant: two masters never write the same frames; the second says who holds them.
+    assert r.returncode == 1
+    assert "another fc-master (pid %d)" % first.pid in r.stderr, r.stderr
+    _, err = first.communicate(timeout=120)
+    assert first.returncode == 0, err
+    assert_frames_exact(out, coordinator_references.frames(SCENE, SLOW))
+    assert coordinator.wait_no_processes() == []
+
+
+def test_changed_options_are_refused_unless_forced(coordinator, coordinator_references,
+                                                   tmp_path):
+    out = tmp_path / "out"
+    assert coordinator.run(["--no-fc", "--quiet", SCENE] + SMALL + ["-o", str(out)]).returncode == 0
+    mtimes = {f: os.stat(out / f).st_mtime_ns for f in frame_files(out)}
+    changed = SMALL + ["+A0.1", "+AM2"]
+    r = coordinator.run(["--no-fc", "--quiet", SCENE] + changed + ["-o", str(out)])
+    # Invariant: frames of other settings are never mixed with new ones.
+    assert r.returncode == 1
+    assert "Antialias" in r.stderr and "--force" in r.stderr, r.stderr
+    assert {f: os.stat(out / f).st_mtime_ns for f in frame_files(out)} == mtimes
+    r = coordinator.run(["--no-fc", "--quiet", "--force", SCENE] + changed + ["-o", str(out)])
+    assert r.returncode == 0, r.stderr
+    assert_frames_exact(out, coordinator_references.frames(SCENE, changed))
+    # A subset of the same animation is the same render: it resumes.
+    r = coordinator.run(["--no-fc", SCENE] + changed + ["+SF2", "+EF4", "-o", str(out)])
+    assert r.returncode == 0 and "nothing to render" in r.stderr, r.stderr
+
+
+def test_changed_scene_is_refused(coordinator, tmp_path):
+    scene = tmp_path / "scene.pov"
+    with open(os.path.join(COORDINATOR_SCENES, "moving.pov")) as f:
+        scene.write_text(f.read())
+    out = tmp_path / "out"
+    args = ["--no-fc", "--quiet", str(scene)] + SMALL + ["-o", str(out)]
+    assert coordinator.run(args).returncode == 0
+    scene.write_text(scene.read_text().replace("color rgb <0.9, 0.3, 0.2>",
+                                               "color rgb <0.2, 0.3, 0.9>"))
+    r = coordinator.run(args)
+    assert r.returncode == 1
+    assert "scene contents" in r.stderr and "--force" in r.stderr, r.stderr
+
+
+def file_kind(path):
+    """What OpenImageIO says a file is: format, channels, bits per sample, compression."""
+    import OpenImageIO as oiio
+    inp = oiio.ImageInput.open(str(path))
+    assert inp, oiio.geterror()
+    spec = inp.spec()
+    kind = (inp.format_name(), spec.nchannels, str(spec.format),
+            spec.get_string_attribute("compression"),
+            spec.get_int_attribute("oiio:BitsPerSample"))
+    inp.close()
+    return kind
+
+
+# --- output formats ---------------------------------------------------------------------------
+
+FORMATS = {
+    "png": (["+FN"], ".png", "uint8"),
+    "png16": (["+FN16"], ".png", "uint16"),
+    "png12": (["+FN12"], ".png", "uint16"),
+    "png5": (["+FN5"], ".png", "uint8"),
+    "exr": (["+FE"], ".exr", "half"),
+    "rle-targa": (["+FC"], ".tga", "uint8"),
+}
+
+
+@pytest.mark.parametrize("name", sorted(FORMATS))
+def test_output_format_as_povray_writes_it(coordinator, coordinator_references, tmp_path,
+                                           name):
+    fmt, ext, pixel_type = FORMATS[name]
+    opts = SMALL + ["+A0.1", "+AM1"] + fmt
+    out = tmp_path / "out"
+    r = coordinator.run(["--quiet", "--division", "frame", "--tile", "48", "--slaves", "2",
+                         SCENE] + opts + ["-o", str(out)])
+    assert r.returncode == 0, r.stderr
+    ref = coordinator_references.frames(SCENE, opts, pixel_type)
+    assert frame_files(out) == sorted(ref) and all(f.endswith(ext) for f in ref), ref
+    for f, want in ref.items():
+        got = load_rgb(out / f, pixel_type)
+        # Invariant: the same file type, bit depth and pixels as one POV-Ray process's.
+        assert got.dtype == want.dtype and (got == want).all(), f
+        assert file_kind(out / f) == file_kind(coordinator_references.path(SCENE, opts, f)), f
+
+
+OUTPUT_NAMES = {
+    # +Orenders/clk.png names PNG frames clk1.png ... as POV-Ray does, not clk.png1.tga; with
+    # no format named, the name's extension chooses it (Targa stays the default otherwise).
+    "png-named": (["+FN", "+Orenders/clk.png"], "clk%d.png", ["+FN"], "moving%d.png"),
+    "png-from-name": (["+Orenders/clk.png"], "clk%d.png", ["+FN"], "moving%d.png"),
+    "exr-from-name": (["+Orenders/clk.exr"], "clk%d.exr", ["+FE"], "moving%d.exr"),
+    # Targa named: POV-Ray keeps a foreign extension and adds its own.
+    "targa-named": (["+FT", "+Orenders/clk.png"], "clk.png%d.tga", [], "moving%d.tga"),
+}
+
+
+@pytest.mark.parametrize("name", sorted(OUTPUT_NAMES))
+def test_output_name_with_extension(coordinator, coordinator_references, tmp_path, name):
+    opts, pattern, ref_opts, ref_pattern = OUTPUT_NAMES[name]
+    # From another directory, without -o: the frames go where POV-Ray would write them.
+    r = coordinator.run(["--no-fc", "--quiet", os.path.join(COORDINATOR_SCENES, SCENE)] +
+                        SMALL + opts, cwd=tmp_path)
+    assert r.returncode == 0, r.stderr
+    out = tmp_path / "renders"
+    assert frame_files(out) == sorted(pattern % n for n in range(1, 9))
+    pixel_type = "half" if pattern.endswith(".exr") else "uint8"
+    ref = coordinator_references.frames(SCENE, SMALL + ref_opts, pixel_type)
+    for n in range(1, 9):
+        got = load_rgb(out / (pattern % n), pixel_type)
+        assert (got == ref[ref_pattern % n]).all(), pattern % n
+
+
+@pytest.mark.parametrize("opt,words", [
+    ("+FJ", ["JPEG", "+FN"]),
+    ("+FB", ["BMP", "+FE"]),
+    ("+UA", ["Output_Alpha"]),
+], ids=["jpeg", "bmp", "alpha"])
+def test_unsupported_output_is_refused(coordinator, tmp_path, opt, words):
+    out = tmp_path / "out"
+    r = coordinator.run(["--no-fc", SCENE] + SMALL + [opt, "-o", str(out)])
+    # Invariant: what fc-master cannot write is refused, in one line saying what works.
+    assert r.returncode == 1
+    for w in words:
+        assert w in r.stderr, r.stderr
+    assert not out.exists() or frame_files(out) == []
+    assert coordinator.wait_no_processes() == []
+
+
+# --- the live preview -------------------------------------------------------------------------
+
+def test_preview_while_rendering(coordinator, coordinator_references, tmp_path):
+    out = tmp_path / "out"
+    ref = coordinator_references.frames(SCENE, SLOW)
+    p = coordinator.start(["--no-fc", "--quiet", "--division", "frame", "--slaves", "2",
+                           SCENE] + SLOW + ["-o", str(out)])
+    latest = out / "preview" / "latest.png"
+    deadline = time.time() + 60
+    while not latest.exists():
+        assert time.time() < deadline and p.poll() is None, "no preview while rendering"
+        time.sleep(0.05)
+    during = load_rgb(latest)
+    still_running = p.poll() is None
+    _, err = p.communicate(timeout=120)
+    assert p.returncode == 0, err
+    # Invariant: the preview appears while the render runs and shows a finished frame.
+    assert still_running
+    assert any((during == want).all() for want in ref.values())
+    sheet = load_rgb(out / "preview" / "contact-sheet.png")
+    # 24 frames of 320x240, halved: 160x120 thumbnails in rows of 6 (about 16:9).
+    assert sheet.shape == (4 * 120, 6 * 160, 3), sheet.shape
+    for k, name in enumerate(sorted(ref)):
+        want = ref[name].astype(float).reshape(120, 2, 160, 2, 3).mean(axis=(1, 3))
+        cell = sheet[(k // 6) * 120:(k // 6 + 1) * 120, (k % 6) * 160:(k % 6 + 1) * 160]
+        # Invariant: the sheet holds every frame, in order, reduced.
+        assert np.abs(cell - want).max() <= 1, name
+    assert_frames_exact(out, ref)
