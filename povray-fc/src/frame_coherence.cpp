@@ -29,6 +29,7 @@ FrameCoherence &FrameCoherence::Get() {
 }
 
 void FrameCoherence::Forget() {
+    fullFrameSeconds_ = 0.0;
     store_.reset();
     haveLast_ = false;
     policy_.Reset();
@@ -194,10 +195,17 @@ void FrameCoherence::EndFrame(std::uint64_t raysTraced) {
         // Blocks this frame did not render missed its changes.
         if (store_) store_->ForgetUntouched();
         current_.storeBytes = store_ ? store_->MemoryBytes() : 0;
-        if (plan_.mode == FramePlan::Mode::kRecord) {
+        // A sequence's first frame (or the one recording resumed with) says nothing about
+        // whether recording pays: counting it as a good frame reset the busy back-off, so
+        // the back-off never grew.
+        const bool coherent = !plan_.everythingDirty;
+        const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - frameStart_).count();
+        if (plan_.mode == FramePlan::Mode::kRecord && !coherent) fullFrameSeconds_ = seconds;
+        if (plan_.mode == FramePlan::Mode::kRecord && (coherent || wastedIfFull_)) {
             const double taken = double(current_.samplesTraced + current_.samplesReused);
-            const bool coherent = !plan_.everythingDirty;
-            policy_.AfterRecordedFrame(wastedIfFull_, coherent && taken > 0 ? double(current_.samplesTraced) / taken : 0.0);
+            const double samplesShare = coherent && taken > 0 ? double(current_.samplesTraced) / taken : 0.0;
+            policy_.AfterRecordedFrame(wastedIfFull_,
+                                       coherent ? RecordingPolicy::WorkShare(samplesShare, seconds, fullFrameSeconds_) : 0.0);
         }
     }
     bookkeeping_ += std::chrono::steady_clock::now() - start;

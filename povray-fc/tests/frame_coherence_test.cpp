@@ -383,3 +383,33 @@ TEST_F(FrameCoherenceRun, BlockLeftOutOfAFrameIsTracedAgainLater) {
 
 }  // namespace
 }  // namespace povrayfc
+
+namespace povrayfc {
+namespace {
+
+// A change that dirties every sample each frame (the back wall creeps forward): recording
+// pauses, and each fruitless try to resume makes the next pause twice as long, also with
+// the full frame recording resumes with in between (it used to reset the back-off).
+TEST_F(FrameCoherenceRun, BusyFramesPauseLongerEachTime) {
+    std::vector<int> pauses;
+    int idle = 0;
+    for (int f = 1; f <= 40; ++f) {
+        ToyScene s = Frame(2.0);
+        s.boxes[0].box.lo.z = 5.0 - 0.01 * f;
+        const FcResult fc = RenderFc(s, f);
+        ASSERT_EQ(std::memcmp(RenderFull(s).data(), fc.image.data(), fc.image.size() * sizeof(float)), 0) << f;
+        if (FrameCoherence::Get().LastStats().fullReason.find("(recording paused)") != std::string::npos) {
+            ++idle;
+        } else if (idle > 0) {
+            pauses.push_back(idle);
+            idle = 0;
+        }
+    }
+    ASSERT_GE(pauses.size(), 3u);
+    EXPECT_EQ(pauses[0], 2);
+    EXPECT_EQ(pauses[1], 4);
+    EXPECT_EQ(pauses[2], 8);
+}
+
+}  // namespace
+}  // namespace povrayfc

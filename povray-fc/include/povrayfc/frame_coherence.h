@@ -82,6 +82,7 @@ class FrameCoherence {
     FrameStats current_, last_;
     std::chrono::steady_clock::duration bookkeeping_{};
     std::chrono::steady_clock::time_point frameStart_{};
+    double fullFrameSeconds_ = 0.0;  // render time of the last full recorded frame
 };
 
 }  // namespace povrayfc
