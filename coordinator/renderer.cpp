@@ -37,11 +37,6 @@ std::vector<std::string> slave_options(const RendererConfig &c, int first)
     return o;
 }
 
-bool contains(const std::vector<Rect> &set, const Rect &r)
-{
-    return std::find(set.begin(), set.end(), r) != set.end();
-}
-
 } // namespace
 
 bool Renderer::start(const RendererConfig &config, int first, std::string &err)
@@ -87,17 +82,12 @@ bool Renderer::start(const RendererConfig &config, int first, std::string &err)
     return true;
 }
 
-bool Renderer::can_take(int frame, const std::vector<Rect> &rects) const
+bool Renderer::can_take(int frame) const
 {
     if (state_ != Waiting || frame < next_ || (!config_.animated && rendered_any_))
         return false;
-    if (!config_.coherent || !rendered_any_)
-        return true;
-    // Frame coherence reuses a pixel's stored colour when nothing it depends on changed since
-    // the last frame; a rectangle left out of that frame would hold older colours.
-    for (const Rect &r : rects)
-        if (!contains(rects_, r))
-            return false;
+    // Any rectangles: with frame coherence, blocks left out of a frame are forgotten at its
+    // end (they missed its changes), so a tile this process gains is traced in full here.
     return true;
 }
 
@@ -118,8 +108,11 @@ bool Renderer::submit(int frame, const std::vector<Rect> &rects, std::string &er
     state_ = Busy;
     frame_ = frame;
     next_ = frame + 1;
+    // With fc, rectangles the last frame did not cover have no stored samples here.
+    fresh_frame_ = !rendered_any_;
+    for (const Rect &r : rects)
+        fresh_frame_ = fresh_frame_ || (config_.coherent && std::find(rects_.begin(), rects_.end(), r) == rects_.end());
     rects_ = rects;
-    first_frame_ = !rendered_any_;
     rendered_any_ = true;
     return true;
 }

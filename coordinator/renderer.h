@@ -4,9 +4,10 @@
 // The process is started at some frame of the animation and walks forward: before each frame
 // it waits for a control line, so one process renders many jobs (a frame and a set of
 // rectangles each) with one parse per frame, and frame coherence carries its state from job
-// to job. A job for an earlier frame, or (with frame coherence) for rectangles the last frame
-// did not cover, needs a fresh process: stored pixels of rectangles left out for a frame
-// would be stale. The console output is kept only to explain failures.
+// to job. A job for an earlier frame needs a fresh process. Rectangles the last frame did not
+// cover need none: fc forgets the blocks a frame left out (they missed its changes) and
+// traces them in full when they come back. The console output is kept only to explain
+// failures.
 #pragma once
 
 #include <sys/types.h>
@@ -52,11 +53,12 @@ public:
 
     State state() const { return state_; }
     int frame() const { return frame_; }
-    // The frame being rendered is this process's first.
-    bool first_frame() const { return first_frame_; }
+    // The frame being rendered is this process's first, or (with fc) has rectangles the last
+    // one did not: fc traces those in full, so the frame says nothing of fc's speed.
+    bool fresh_frame() const { return fresh_frame_; }
 
-    // Whether this process can render frame `frame` over rects without starting over.
-    bool can_take(int frame, const std::vector<Rect> &rects) const;
+    // Whether this process can render frame `frame` (over any rectangles) without starting over.
+    bool can_take(int frame) const;
 
     // Ask the waiting process to render frame over rects (can_take must hold).
     bool submit(int frame, const std::vector<Rect> &rects, std::string &err);
@@ -89,7 +91,7 @@ private:
     int next_ = 0;                      // frames below this have passed
     std::vector<Rect> rects_;           // rectangles of the last frame asked for
     bool rendered_any_ = false;
-    bool first_frame_ = false;
+    bool fresh_frame_ = false;
     std::deque<std::string> tail_;      // last console lines
 };
 

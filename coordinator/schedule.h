@@ -21,8 +21,7 @@
 // division moves tiles from the slowest to the fastest slaves (by measured speed) until no
 // share exceeds its speed's by more than 20%, at most once every kMoveGap frames: with frame
 // coherence tiles move only when the slaves really drift apart, since a moved tile costs a
-// full re-trace on its new slave (its renderer starts afresh, and such a first frame does not
-// count in the slave's speed). Without fc (set_cheap_moves) every division balances, to 5%.
+// full re-trace on its new slave (and such a frame does not count in the slave's speed). Without fc (set_cheap_moves) every division balances, to 5%.
 //
 // Load balancing: a slave whose range is finished joins the range with the most work left per
 // slave (frame division) or splits it in the middle, taking the later half (sequence and

@@ -4,8 +4,7 @@
 // then jobs (FC_JOB: one frame, a set of tiles), at most two at a time. Each job goes to the
 // renderer (renderer.h) as one frame-control line; the frame comes back on the renderer's
 // frame channel and goes to the master as FC_FRAME. The renderer is started again only when
-// a job cannot follow the last one (an earlier frame; with frame coherence, tiles the last
-// frame did not have) or after it failed. The renderer dies with the slave
+// a job cannot follow the last one (an earlier frame) or after it failed. The renderer dies with the slave
 // (PR_SET_PDEATHSIG), the slave with the master (pvm_notify on the master's exit).
 #include <poll.h>
 #include <signal.h>
@@ -165,7 +164,7 @@ void Slave::feed_renderer()
         JobMsg &j = queue_.front();
         if (renderer_.state() == Renderer::Busy)
             return;
-        if (!renderer_.can_take(j.frame, j.rects) || renderer_threads_ != j.threads) {
+        if (!renderer_.can_take(j.frame) || renderer_threads_ != j.threads) {
             RendererConfig c;
             c.program = setup_.renderer;
             c.cwd = setup_.cwd;
@@ -215,7 +214,7 @@ bool Slave::send_frame(const FrameRecord &rec)
     fr.rays = rec.rays;
     fr.parse_seconds = rec.parse_seconds;
     fr.trace_seconds = rec.trace_seconds;
-    fr.fresh = renderer_.first_frame() ? 1 : 0;
+    fr.fresh = renderer_.fresh_frame() ? 1 : 0;
     fr.encoding = rec.encoding;
     fr.data = rec.data;
     int r = send_msg(master_, FC_FRAME, fr);

@@ -89,6 +89,30 @@ def test_rectangles_equal_a_full_render(tmp_path, options):
         assert offset == len(payload)
 
 
+@pytest.mark.parametrize("options", [["-A"], ["+A0.1", "+AM1"]], ids=["no-aa", "am1"])
+def test_frame_coherence_rectangle_left_out_then_back(tmp_path, options):
+    # With fc, one process keeps rendering while its rectangles change (as a slave's tiles
+    # do when fc-master moves them): the right half sits out frame 2, while the sphere
+    # crosses it, and comes back in frame 3; the left half leaves in frame 4.
+    left, right = "0,0,80,120", "80,0,160,120"
+    control = f"render 1 {left} {right}\nrender 2 {left}\nrender 3 {left} {right}\nrender 4 {right}\n"
+    r = channel_render(tmp_path, options + ["Frame_Coherence=on"], control)
+    assert r.returncode == 0, r.stderr
+    recs = records(tmp_path / "channel")
+    ref = reference(tmp_path, options)
+    assert [int(f["frame"]) for f, _, _ in recs] == [1, 2, 3, 4]
+    for fields, rects, payload in recs:
+        want = ref[int(fields["frame"])]
+        offset = 0
+        for x0, y0, x1, y1 in rects:
+            n = (x1 - x0) * (y1 - y0) * 3
+            got = np.frombuffer(payload[offset:offset + n], np.uint8).reshape(y1 - y0, x1 - x0, 3)
+            offset += n
+            # Invariant: fc's pixels equal a full render's, also where the last frame was
+            # not rendered here.
+            assert np.array_equal(got, want[y0:y1, x0:x1]), (fields["frame"], (x0, y0, x1, y1))
+
+
 def test_fewer_rays_for_fewer_rectangles(tmp_path):
     r = channel_render(tmp_path, ["-A"], "render 1\nrender 2 0,0,32,32\n")
     assert r.returncode == 0, r.stderr
