@@ -113,15 +113,17 @@ bool Preview::write_png(const std::string &name, int w, int h, const std::vector
 
 bool Preview::flush(double now, bool force, std::string &err)
 {
-    if (!on_ || !dirty_ || (!force && now - last_ < kInterval))
+    if (!on_ || !dirty_ || (!force && now - last_ < wait_))
         return true;
     last_ = now;
     dirty_ = false;
+    const double start = fc::now();
     if (!write_png("latest.png", width_, height_, latest_, err) ||
         !write_png("contact-sheet.png", cols_ * tw_, rows_ * th_, sheet_, err)) {
         on_ = false;
         return false;
     }
+    wait_ = std::max(kInterval, (fc::now() - start) / kMaxShare);
     return true;
 }
 

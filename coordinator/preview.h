@@ -1,7 +1,8 @@
 // preview.h - a look at a long render while it runs: DIR/preview/latest.png (the frame
 // finished last, full size) and DIR/preview/contact-sheet.png (every frame finished so far,
 // reduced, in frame order, resumed ones included), rewritten at most every kInterval seconds
-// and at the end, each written under a temporary name and renamed (a viewer never sees half a
+// (and never more often than keeps the encoding under kMaxShare of the master's time) and at
+// the end, each written under a temporary name and renamed (a viewer never sees half a
 // file). 8-bit PNG whatever the output format: 16-bit samples keep their high byte, OpenEXR's
 // linear values are clipped and gamma-encoded (2.2) for the eye.
 //
@@ -20,7 +21,11 @@ namespace fc {
 
 class Preview {
 public:
-    static constexpr double kInterval = 2.0;   // seconds between rewrites
+    static constexpr double kInterval = 2.0;   // seconds between rewrites, at least
+    // Share of the time the rewrites may take: on a 2-core host the master's CPU comes out of
+    // the slaves' (a 1280x960 frame and its sheet took ~0.1 s to encode every 2 s, 5% of all
+    // CPU in `perf`).
+    static constexpr double kMaxShare = 0.01;
 
     // Turn the preview on for frames of width x height with samples of type.
     void start(const std::string &dir, int width, int height, PixelType type, int frames);
@@ -54,6 +59,7 @@ private:
     std::vector<uint8_t> sheet_, latest_;
     bool dirty_ = false;
     double last_ = -1e9;
+    double wait_ = kInterval;   // seconds until the next rewrite is due
 };
 
 } // namespace fc
