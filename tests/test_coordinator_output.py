@@ -153,13 +153,17 @@ exec unshare -m sh -c 'mount -t tmpfs -o size=64k tmpfs "$0" &&
 def test_slave_without_room_in_tmp_says_so(coordinator, tmp_path):
     # A slave whose /tmp has no room left for its working directory (no inode, no block):
     # the reason reaches the user, and the render stops once the host is left out.
-    from conftest import FC_SLAVE
+    # PVM's directory and the checkout (binaries, scenes: a clone may live in /tmp) stay
+    # visible through the new /tmp.
+    from conftest import FC_SLAVE, TOP
     script = tmp_path / "full-tmp-slave"
     script.write_text(f"""#!/bin/sh
 exec unshare -m sh -c '
-  keep=/run/fc-test-keep-$$; mkdir -p $keep && mount --bind "$PVM_TMP" $keep &&
-  mount -t tmpfs -o size=64k,nr_inodes=64 tmpfs /tmp && mkdir -p "$PVM_TMP" &&
-  mount --bind $keep "$PVM_TMP" && umount -l $keep && rmdir $keep
+  keep=/run/fc-test-keep-$$; mkdir -p $keep/pvm $keep/top &&
+  mount --bind "$PVM_TMP" $keep/pvm && mount --bind "{TOP}" $keep/top &&
+  mount -t tmpfs -o size=64k,nr_inodes=64 tmpfs /tmp && mkdir -p "$PVM_TMP" "{TOP}" &&
+  mount --bind $keep/pvm "$PVM_TMP" && mount --bind $keep/top "{TOP}" &&
+  umount -l $keep/pvm $keep/top && rm -rf $keep
   i=0; while touch /tmp/f$i 2>/dev/null; do i=$((i+1)); done
   head -c 100000 /dev/zero > /tmp/fill 2>/dev/null
   exec {FC_SLAVE}'
