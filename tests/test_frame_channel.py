@@ -54,6 +54,18 @@ def reference(tmp_path, options):
     return {n: read_pixels(ref / f"f{n}.tga")[:, :, :3] for n in range(1, 5)}
 
 
+def assert_rectangles_equal(fields, rects, payload, ref):
+    """A record's payload holds exactly its rectangles, each equal to the full render's."""
+    want = ref[int(fields["frame"])]
+    offset = 0
+    for x0, y0, x1, y1 in rects:
+        n = (x1 - x0) * (y1 - y0) * 3
+        got = np.frombuffer(payload[offset:offset + n], np.uint8).reshape(y1 - y0, x1 - x0, 3)
+        offset += n
+        assert np.array_equal(got, want[y0:y1, x0:x1]), (fields["frame"], (x0, y0, x1, y1))
+    assert offset == len(payload)
+
+
 def channel_render(tmp_path, options, control):
     (tmp_path / "control").write_text(control)
     r = povray(ANIMATION + options + [f"+O{tmp_path}/x", f"Frame_Channel={tmp_path}/channel",
@@ -78,15 +90,7 @@ def test_rectangles_equal_a_full_render(tmp_path, options):
     for fields, rects, payload in recs:
         assert fields["encoding"] == "rgb8" and int(fields["rays"]) > 0
         assert float(fields["parse"]) >= 0 and float(fields["trace"]) > 0
-        want = ref[int(fields["frame"])]
-        offset = 0
-        for x0, y0, x1, y1 in rects:
-            n = (x1 - x0) * (y1 - y0) * 3
-            got = np.frombuffer(payload[offset:offset + n], np.uint8).reshape(y1 - y0, x1 - x0, 3)
-            offset += n
-            # Invariant: the rectangle's pixels equal the full render's.
-            assert np.array_equal(got, want[y0:y1, x0:x1]), (fields["frame"], (x0, y0, x1, y1))
-        assert offset == len(payload)
+        assert_rectangles_equal(fields, rects, payload, ref)
 
 
 @pytest.mark.parametrize("options", [["-A"], ["+A0.1", "+AM1"]], ids=["no-aa", "am1"])
@@ -101,16 +105,10 @@ def test_frame_coherence_rectangle_left_out_then_back(tmp_path, options):
     recs = records(tmp_path / "channel")
     ref = reference(tmp_path, options)
     assert [int(f["frame"]) for f, _, _ in recs] == [1, 2, 3, 4]
+    # Invariant: fc's pixels equal a full render's, also where the last frame was not
+    # rendered here.
     for fields, rects, payload in recs:
-        want = ref[int(fields["frame"])]
-        offset = 0
-        for x0, y0, x1, y1 in rects:
-            n = (x1 - x0) * (y1 - y0) * 3
-            got = np.frombuffer(payload[offset:offset + n], np.uint8).reshape(y1 - y0, x1 - x0, 3)
-            offset += n
-            # Invariant: fc's pixels equal a full render's, also where the last frame was
-            # not rendered here.
-            assert np.array_equal(got, want[y0:y1, x0:x1]), (fields["frame"], (x0, y0, x1, y1))
+        assert_rectangles_equal(fields, rects, payload, ref)
 
 
 def test_fewer_rays_for_fewer_rectangles(tmp_path):
