@@ -45,6 +45,14 @@ size_t FrameAssembly::frame_bytes(bool &exact) const
     return bytes_;
 }
 
+size_t FrameAssembly::frame_bytes_bound() const
+{
+    size_t raw = size_t(width_) * size_t(height_) * 3 * pixel_type_bytes(format_.pixels);
+    // Run-length Targa at its worst adds a byte per 128 pixels, PNG's stored deflate blocks
+    // 5 bytes per 64 KiB and a byte per row; headers and metadata stay far below 64 KiB.
+    return raw + raw / 64 + size_t(height_) + (64u << 10);
+}
+
 size_t FrameAssembly::encoded_size(bool &exact) const
 {
     size_t raw = size_t(width_) * size_t(height_) * 3 * pixel_type_bytes(format_.pixels);

@@ -36,6 +36,8 @@ public:
     // Bytes one frame takes in the output format: exact when the format's size is fixed
     // (uncompressed Targa), else the uncompressed size (exact is false).
     size_t frame_bytes(bool &exact) const;
+    // No frame takes more than this in any output format, found without encoding one.
+    size_t frame_bytes_bound() const;
 
     // Whether frame index i is already in the directory, complete and correct: it decodes
     // completely at the right size, and its pixels hash to what the journal recorded (a frame

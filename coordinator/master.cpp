@@ -710,7 +710,6 @@ using namespace fc;
 int main(int argc, char **argv)
 {
     Options opt = parse_options(argc, argv);
-    preload_image_io();     // OpenImageIO loads while POV-Ray is probed
     install_signal_handlers(on_signal);
     Master master(opt);
     return master.run();
