@@ -67,7 +67,7 @@ void Master::plan_if_ready()
     int parts = opt_.ranges;
     if (parts <= 0)
         parts = opt_.division == Division::Hybrid ? std::max(1, (ready + 1) / 2) : ready;
-    sched_->plan(parts);
+    sched_->plan(parts, ready + starting);
     planned_ = true;
 }
 

@@ -83,7 +83,7 @@ std::vector<int> Schedule::missing(int index, const std::vector<int> &tiles) con
     return m;
 }
 
-void Schedule::plan(int parts)
+void Schedule::plan(int parts, int slaves)
 {
     std::vector<int> todo;
     for (int i = 0; i < nframes_; i++)
@@ -92,6 +92,7 @@ void Schedule::plan(int parts)
     if (todo.empty())
         return;
     parts = division_ == Division::Frame ? 1 : std::max(1, std::min(parts, int(todo.size())));
+    hybrid_members_ = std::max(1, (slaves + parts - 1) / parts);
     // Ranges of about equally many missing frames; a range may span finished frames (the
     // renderer skips them without parsing).
     for (int p = 0; p < parts; p++) {
@@ -431,9 +432,12 @@ bool Schedule::find_range(int slave)
     if (best < 0)
         return false;
     Range &r = ranges_[size_t(best)];
-    // Frame division shares a range among as many slaves as it has tiles; more split it.
-    if (r.members.empty() ||
-        (division_ == Division::Frame && int(r.members.size()) < tiles())) {
+    // Frame division shares a range among as many slaves as it has tiles, hybrid among its
+    // share of the slaves; more split it.
+    int members = division_ == Division::Frame    ? tiles()
+                  : division_ == Division::Hybrid ? std::min(hybrid_members_, tiles())
+                                                  : 1;
+    if (r.members.empty() || int(r.members.size()) < members) {
         // A newcomer to a range whose tiles have owners gets its share by rebalancing, at
         // the next division.
         if (!r.owner.empty()) {

@@ -88,8 +88,10 @@ public:
     long cells_done() const { return cells_done_; }
     bool finished() const { return frames_done_ == nframes_; }
 
-    // Cut the missing frames into `parts` ranges (sequence, hybrid) or one (frame).
-    void plan(int parts);
+    // Cut the missing frames into `parts` ranges (sequence, hybrid) or one (frame). A hybrid
+    // range is shared by its part of the `slaves` expected (rounded up); a slave beyond that
+    // splits a range, as in sequence division.
+    void plan(int parts, int slaves = 0);
 
     // Without frame coherence a moved tile costs its new slave nothing extra: then every
     // division balances by speed, not only after a slave had to wait.
@@ -176,6 +178,7 @@ private:
     std::map<int, double> speed_;       // pixels per second, smoothed
     double job_seconds_ = 0;            // how long a job takes, smoothed
     bool cheap_moves_ = false;
+    int hybrid_members_ = 1;            // slaves a hybrid range takes before it is split
     std::deque<Orphan> orphans_;
     std::map<int, Job> jobs_;
     int next_id_ = 1;

@@ -186,6 +186,30 @@ static void test_idle_slave_splits_range()
         CHECK(!two.count(i) && i < 6);
 }
 
+static void test_hybrid_ranges_are_shared()
+{
+    // Four slaves, two ranges: each range's frames are divided between two of them; a fifth
+    // slave arriving later splits a range, as in sequence division.
+    Schedule s(make_tiles(kArea, 40), 10, Division::Hybrid);     // 12 tiles
+    for (int slave : {1, 2, 3, 4})
+        s.add_slave(slave, 100);
+    s.plan(2, 4);
+    std::map<int, const Job *> first;
+    for (int slave : {1, 2, 3, 4})
+        first[slave] = s.next_job(slave, 0, true);
+    std::map<int, int> tiles_of_frame;
+    for (auto &kv : first) {
+        CHECK(kv.second && kv.second->tiles.size() == 6);
+        tiles_of_frame[kv.second->index] += int(kv.second->tiles.size());
+    }
+    // Frames 0 and 5 (the ranges' first frames), each divided between two slaves.
+    CHECK(tiles_of_frame.size() == 2 && tiles_of_frame[0] == 12 && tiles_of_frame[5] == 12);
+    s.add_slave(5, 100);
+    const Job *late = s.next_job(5, 0, true);
+    // The later half of the first range's undivided frames (1..4), whole frames.
+    CHECK(late && late->tiles.size() == 12 && late->index == 3);
+}
+
 static void test_dead_slave_orphans()
 {
     Schedule s(make_tiles(kArea, 80), 4, Division::Frame);
@@ -288,7 +312,7 @@ static void test_simulation(Division div, unsigned seed)
         s.add_slave(slave, 100 * (1 + slave % 2));
         speed[slave] = 1 + double(rng() % 3);
     }
-    s.plan(div == Division::Frame ? 1 : 3);
+    s.plan(div == Division::Frame ? 1 : 3, 3);
     std::map<int, std::vector<Job>> held;
     int next_slave = 4, steps = 0, max_partial = 0;
     std::map<std::pair<int, int>, int> delivered;
@@ -359,6 +383,7 @@ int main()
     test_more_slaves_than_tiles();
     test_resume_skips_done_frames();
     test_idle_slave_splits_range();
+    test_hybrid_ranges_are_shared();
     test_dead_slave_orphans();
     test_failure_retries_elsewhere();
     test_straggler_duplicate();
