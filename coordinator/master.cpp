@@ -710,6 +710,8 @@ using namespace fc;
 int main(int argc, char **argv)
 {
     Options opt = parse_options(argc, argv);
+    // OpenBLAS, loaded with OpenImageIO, would start a spinning thread per core for nothing.
+    setenv("OPENBLAS_NUM_THREADS", "1", 0);
     install_signal_handlers(on_signal);
     Master master(opt);
     return master.run();

@@ -117,6 +117,12 @@ bool Master::probe()
         png_ok = probe_resolved_options(renderer_, "+FN", opt_.pov, cwd_, tmpdir_ + "/png",
                                         limit, png, png_err);
     });
+    // OpenImageIO (262 shared libraries, 0.3 s of CPU) loads while POV-Ray is probed and the
+    // slaves start, when the processors are mostly idle; not during the first frames, where
+    // it would hold one slave back for the whole run (fc keeps tiles where they are). Not
+    // before the threads above: while dlopen() runs, glibc's loader lock stalls every
+    // pthread_create.
+    preload_image_io();
     bool scene_ok = probe_scene(renderer_, "+FT", opt_.pov, cwd_, tmpdir_, limit, scene_, scene_err);
     resolved.join();
     resolved_png.join();
@@ -495,10 +501,6 @@ int Master::run()
         return 1;
     }
     debug_log("slaves spawned");
-    // OpenImageIO (262 shared libraries, 0.3 s of CPU) loads while the slaves render their
-    // first frames, not earlier: while dlopen() runs, glibc's loader lock stalls every
-    // pthread_create and NSS lookup, and the probes' threads and PVM's start need those.
-    preload_image_io();
     int rc = loop();
     debug_log("loop done");
     double elapsed = start_ > 0 ? now() - start_ : 0;
