@@ -318,6 +318,10 @@ void Master::on_frame(int src)
     // the slave's speed on coherent frames.
     if (!(fr.fresh && !extra_.empty()))
         sched_->note_speed(src, pixels, seconds);
+    double coherent_pixels = pixels_traced_ - fresh_pixels_;
+    if (fresh_pixels_ > 0 && coherent_pixels > 0 && savings_.seconds_spent > fresh_seconds_)
+        sched_->set_fresh_cost((fresh_seconds_ / fresh_pixels_) /
+                               ((savings_.seconds_spent - fresh_seconds_) / coherent_pixels));
     if (!fresh.empty()) {
         std::vector<char> keep(fr.tiles.size(), 0);
         for (size_t k = 0; k < fr.tiles.size(); k++)

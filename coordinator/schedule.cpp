@@ -450,10 +450,16 @@ bool Schedule::find_range(int slave)
         return true;
     }
     int left = r.hi - r.frontier + 1;
-    if (left < 2)
+    // The newcomer takes n of the left frames, starting fresh: its first one costs
+    // fresh_cost_ frames. It finishes with the range's slave when
+    // fresh_cost_ + (n - 1) = left - n; taking none is better when n < 1.
+    int take = left - left / 2;
+    if (fresh_cost_ > 1)
+        take = int(std::floor((double(left) + 1 - fresh_cost_) / 2));
+    if (left < 2 || take < 1)
         return false;
     Range tail;
-    tail.lo = tail.frontier = r.frontier + left / 2;
+    tail.lo = tail.frontier = r.hi - take + 1;
     tail.hi = r.hi;
     r.hi = tail.lo - 1;
     tail.members.push_back(slave);

@@ -24,8 +24,10 @@
 // full re-trace on its new slave (and such a frame does not count in the slave's speed). Without fc (set_cheap_moves) every division balances, to 5%.
 //
 // Load balancing: a slave whose range is finished joins the range with the most work left per
-// slave (frame division) or splits it in the middle, taking the later half (sequence and
-// hybrid); jobs are handed out at most two per slave ahead, so a split needs no handshake.
+// slave (frame division) or splits it, taking the later part of its undivided frames
+// (sequence and hybrid): half without fc; with fc less, since the newcomer's first frame is
+// traced in full (set_fresh_cost), and nothing when it could not finish sooner. Jobs are
+// handed out at most two per slave ahead, so a split needs no handshake.
 // When nothing is left to hand out, an idle slave duplicates the oldest job another slave is
 // rendering, once it ran twice as long as jobs take (stragglers); the first result of each
 // cell wins and the slower copy is cancelled.
@@ -96,6 +98,10 @@ public:
     // Without frame coherence a moved tile costs its new slave nothing extra: then every
     // division balances by speed, not only after a slave had to wait.
     void set_cheap_moves(bool cheap) { cheap_moves_ = cheap; }
+    // With frame coherence a renderer's first frame is traced in full: it costs `frames`
+    // coherent frames (measured). A split then leaves the newcomer fewer frames than half,
+    // so both finish together, and none when the newcomer could not finish sooner.
+    void set_fresh_cost(double frames) { fresh_cost_ = frames; }
 
     // Slaves: a slave joins when it is ready (host identifies its machine for retries).
     void add_slave(int slave, int host);
@@ -178,6 +184,7 @@ private:
     std::map<int, double> speed_;       // pixels per second, smoothed
     double job_seconds_ = 0;            // how long a job takes, smoothed
     bool cheap_moves_ = false;
+    double fresh_cost_ = 1;             // a fresh renderer's first frame, in coherent frames
     int hybrid_members_ = 1;            // slaves a hybrid range takes before it is split
     std::deque<Orphan> orphans_;
     std::map<int, Job> jobs_;

@@ -210,6 +210,27 @@ static void test_hybrid_ranges_are_shared()
     CHECK(late && late->tiles.size() == 12 && late->index == 3);
 }
 
+static void test_fresh_cost_shortens_splits()
+{
+    // With fc a newcomer's first frame costs 5 coherent frames: of 9 undivided frames it
+    // takes (9 + 1 - 5) / 2 = 2, so both finish together; of 4 it takes none.
+    for (int frames : {11, 6}) {
+        Schedule s({kArea}, frames, Division::Sequence);
+        s.set_fresh_cost(5);
+        s.add_slave(1, 100);
+        s.plan(1, 1);
+        s.next_job(1, 0, true);
+        s.next_job(1, 0, true);     // frames 0 and 1 handed out
+        s.add_slave(2, 100);
+        const Job *c = s.next_job(2, 0, false);
+        if (frames == 11) {
+            CHECK(c && c->index == 9);
+        } else {
+            CHECK(c == nullptr);
+        }
+    }
+}
+
 static void test_dead_slave_orphans()
 {
     Schedule s(make_tiles(kArea, 80), 4, Division::Frame);
@@ -384,6 +405,7 @@ int main()
     test_resume_skips_done_frames();
     test_idle_slave_splits_range();
     test_hybrid_ranges_are_shared();
+    test_fresh_cost_shortens_splits();
     test_dead_slave_orphans();
     test_failure_retries_elsewhere();
     test_straggler_duplicate();
