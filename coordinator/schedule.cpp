@@ -451,11 +451,16 @@ bool Schedule::find_range(int slave)
     }
     int left = r.hi - r.frontier + 1;
     // The newcomer takes n of the left frames, starting fresh: its first one costs
-    // fresh_cost_ frames. It finishes with the range's slave when
-    // fresh_cost_ + (n - 1) = left - n; taking none is better when n < 1.
-    int take = left - left / 2;
-    if (fresh_cost_ > 1)
-        take = int(std::floor((double(left) + 1 - fresh_cost_) / 2));
+    // fresh_cost_ frames. At speeds u (newcomer) and v (the range's slave), in frames a
+    // second, both finish together when (fresh_cost_ + n - 1) / u = (left - n) / v; taking
+    // none is better when n < 1. Speeds not measured yet count as equal.
+    double u = 1, v = 1;
+    auto mine = speed_.find(slave), theirs = speed_.find(r.members.front());
+    if (mine != speed_.end() && theirs != speed_.end() && mine->second > 0 && theirs->second > 0)
+        u = mine->second, v = theirs->second;
+    double balanced = (double(left) * u - (fresh_cost_ - 1) * v) / (u + v);
+    // Without fc a tie goes to the newcomer (half of an odd number rounds up).
+    int take = int(std::floor(balanced + (fresh_cost_ > 1 ? 0.0 : 0.5)));
     if (left < 2 || take < 1)
         return false;
     Range tail;

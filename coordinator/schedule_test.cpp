@@ -231,6 +231,24 @@ static void test_fresh_cost_shortens_splits()
     }
 }
 
+static void test_faster_newcomer_takes_more()
+{
+    // fc, a fresh frame costs 5 coherent ones; the newcomer renders twice as fast: of 9
+    // undivided frames it takes (9 * 2 - 4 * 1) / 3 = 4 (it finishes after 8/2 = 4 frame
+    // times, the range's slave after 5).
+    Schedule s({kArea}, 11, Division::Sequence);
+    s.set_fresh_cost(5);
+    s.add_slave(1, 100);
+    s.plan(1, 1);
+    s.next_job(1, 0, true);
+    s.next_job(1, 0, true);
+    s.note_speed(1, 1e5, 1.0);
+    s.note_speed(2, 2e5, 1.0);
+    s.add_slave(2, 200);
+    const Job *c = s.next_job(2, 0, false);
+    CHECK(c && c->index == 7);
+}
+
 static void test_dead_slave_orphans()
 {
     Schedule s(make_tiles(kArea, 80), 4, Division::Frame);
@@ -406,6 +424,7 @@ int main()
     test_idle_slave_splits_range();
     test_hybrid_ranges_are_shared();
     test_fresh_cost_shortens_splits();
+    test_faster_newcomer_takes_more();
     test_dead_slave_orphans();
     test_failure_retries_elsewhere();
     test_straggler_duplicate();
