@@ -99,8 +99,10 @@ public:
     // division balances by speed, not only after a slave had to wait.
     void set_cheap_moves(bool cheap) { cheap_moves_ = cheap; }
     // With frame coherence a renderer's first frame is traced in full: it costs `frames`
-    // coherent frames (measured). A split then leaves the newcomer fewer frames than half,
-    // so both finish together, and none when the newcomer could not finish sooner.
+    // coherent frames (measured). A split then gives the newcomer as many frames as let both
+    // finish together at their measured speeds, and none when it could not finish sooner.
+    // (A renderer that jumps forward keeps its samples and pays less than a first frame:
+    // the estimate errs towards splitting too little.)
     void set_fresh_cost(double frames) { fresh_cost_ = frames; }
 
     // Slaves: a slave joins when it is ready (host identifies its machine for retries).
