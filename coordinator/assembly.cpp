@@ -206,13 +206,21 @@ bool FrameAssembly::write(int index, std::vector<uint8_t> &samples, bool &disk_f
         disk_full = errno == ENOSPC || errno == EDQUOT;
         return false;
     }
+    // Recorded before it gets its name: a master killed in between leaves a record whose
+    // file is missing or another (resume renders it again), never a complete frame under its
+    // final name that resume would not recognise and render again.
+    if (!dir_.record(base_name(dst), pixels_hash(p.samples), err)) {
+        disk_full = errno == ENOSPC || errno == EDQUOT;
+        unlink(tmp.c_str());
+        return false;
+    }
     // Only a complete file gets the final name (rename replaces a damaged one atomically).
     if (rename(tmp.c_str(), dst.c_str()) != 0) {
         sys_fail(err, "rename " + tmp + " to " + dst);
         unlink(tmp.c_str());
         return false;
     }
-    if (!sync_dir(dir_.path(), err) || !dir_.record(base_name(dst), pixels_hash(p.samples), err)) {
+    if (!sync_dir(dir_.path(), err)) {
         disk_full = errno == ENOSPC || errno == EDQUOT;
         return false;
     }
