@@ -45,9 +45,14 @@ size_t FrameAssembly::frame_bytes(bool &exact) const
     return bytes_;
 }
 
+size_t FrameAssembly::raw_bytes() const
+{
+    return size_t(width_) * size_t(height_) * 3 * pixel_type_bytes(format_.pixels);
+}
+
 size_t FrameAssembly::frame_bytes_bound() const
 {
-    size_t raw = size_t(width_) * size_t(height_) * 3 * pixel_type_bytes(format_.pixels);
+    size_t raw = raw_bytes();
     // Run-length Targa at its worst adds a byte per 128 pixels, PNG's stored deflate blocks
     // 5 bytes per 64 KiB and a byte per row; headers and metadata stay far below 64 KiB.
     return raw + raw / 64 + size_t(height_) + (64u << 10);
@@ -55,7 +60,7 @@ size_t FrameAssembly::frame_bytes_bound() const
 
 size_t FrameAssembly::encoded_size(bool &exact) const
 {
-    size_t raw = size_t(width_) * size_t(height_) * 3 * pixel_type_bytes(format_.pixels);
+    size_t raw = raw_bytes();
     exact = false;
     if (format_.fixed_size) {
         // Encode a blank frame: an uncompressed format's size does not depend on the pixels.
@@ -67,7 +72,7 @@ size_t FrameAssembly::encoded_size(bool &exact) const
             return bytes.size();
         }
     }
-    return raw + 4096;      // headers and the like
+    return frame_bytes_bound();
 }
 
 uint64_t FrameAssembly::pixels_hash(const std::vector<uint8_t> &samples)

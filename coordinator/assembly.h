@@ -34,7 +34,7 @@ public:
     std::string temp_path(int index) const;
 
     // Bytes one frame takes in the output format: exact when the format's size is fixed
-    // (uncompressed Targa), else the uncompressed size (exact is false).
+    // (uncompressed Targa), else frame_bytes_bound() (exact is false).
     size_t frame_bytes(bool &exact) const;
     // No frame takes more than this in any output format, found without encoding one.
     size_t frame_bytes_bound() const;
@@ -76,6 +76,7 @@ private:
     };
 
     size_t encoded_size(bool &exact) const;
+    size_t raw_bytes() const;           // a frame's samples, uncompressed
 
     OutputDir &dir_;
     OutputFormat format_;
