@@ -203,7 +203,7 @@ void Master::on_hello(int src)
     setup.height = scene_.height;
     setup.digits = scene_.digits;
     setup.last_frame = scene_.frames.back();
-    setup.coherent = extra_.empty() ? 0 : 1;
+    setup.coherent = opt_.fc ? 1 : 0;
     setup.timeout = int(std::ceil(opt_.timeout));
     setup.nice = opt_.nice;
     int r = send_msg(src, FC_SETUP, setup);
@@ -303,7 +303,7 @@ void Master::on_frame(int src)
     for (const Rect &r : fr.rects)
         pixels += double(r.area());
     hs.pixels += pixels;
-    if (!extra_.empty()) {
+    if (opt_.fc) {
         // What fc saved: its first frame in a renderer is traced in full, the yardstick.
         savings_.rays_spent += std::max(0.0, fr.rays);
         savings_.seconds_spent += fr.trace_seconds;
@@ -316,7 +316,7 @@ void Master::on_frame(int src)
     }
     // A fresh renderer with frame coherence traced and recorded everything: no measure of
     // the slave's speed on coherent frames.
-    if (!(fr.fresh && !extra_.empty()))
+    if (!(fr.fresh && opt_.fc))
         sched_->note_speed(src, pixels, seconds);
     double coherent_pixels = pixels_traced_ - fresh_pixels_;
     if (fresh_pixels_ > 0 && coherent_pixels > 0 && savings_.seconds_spent > fresh_seconds_)

@@ -74,7 +74,7 @@ private:
     Options opt_;
     Report report_;
     std::string renderer_, cwd_, outdir_, tmpdir_;
-    std::vector<std::string> extra_;
+    std::vector<std::string> extra_;    // for the slaves, after the user's: fc on, block size
     std::vector<std::string> format_options_;   // the format when the user named none (+FN)
     SceneInfo scene_;
     ResolvedOptions resolved_;          // POV-Ray's resolved options (Create_Ini)

@@ -14,6 +14,7 @@
 
 #include "image_io.h"
 #include "master.h"
+#include "render_blocks.h"
 #include "util.h"
 
 namespace fc {
@@ -154,6 +155,12 @@ bool Master::probe()
     // the channel's patches come after fc's.
     if (opt_.fc)
         extra_.push_back(kFrameCoherenceOption);
+    if (opt_.division != Division::Sequence) {
+        // Blocks inside tiles: no block traced by two slaves where the pixels allow it.
+        int block = slave_render_block(ini, opt_.tile);
+        if (block > 0)
+            extra_.push_back(strf("Render_Block_Size=%d", block));
+    }
     resolved_ = ini;
     read_shellouts(ini, shellouts_);
     shellouts_.permitted = scene_.shellouts_permitted;
@@ -311,7 +318,7 @@ bool Master::prepare_output()
                                       scene_.height, scene_.frames));
     assembly_->remove_stale_temps();
     sched_.reset(new Schedule(tiles_, int(scene_.frames.size()), opt_.division));
-    sched_->set_cheap_moves(extra_.empty());
+    sched_->set_cheap_moves(!opt_.fc);
     cells_total_ = long(tiles_.size()) * long(scene_.frames.size());
     frame_started_.assign(scene_.frames.size(), 0);
     for (size_t i = 0; i < scene_.frames.size(); i++) {
@@ -441,7 +448,7 @@ void Master::finish(bool ok)
                           tiles_[k].x1, tiles_[k].y1);
         head += "  \"tile_rects\": [" + rects + "],\n";
         head += strf("  \"max_frames_held\": %d,\n", max_frames_held_);
-        head += strf("  \"frame_coherence\": %s,\n", extra_.empty() ? "false" : "true");
+        head += strf("  \"frame_coherence\": %s,\n", opt_.fc ? "true" : "false");
         head += strf("  \"virtual_machine\": \"%s\",\n  \"hosts_used\": %d,\n",
                      vm_kind_.c_str(), int(host_stats_.size()));
         head += strf("  \"format\": %s,\n  \"bits_per_color\": %d,\n",

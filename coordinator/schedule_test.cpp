@@ -7,6 +7,7 @@
 #include <set>
 #include <vector>
 
+#include "render_blocks.h"
 #include "schedule.h"
 
 using namespace fc;
@@ -413,6 +414,25 @@ static void test_simulation(Division div, unsigned seed)
         CHECK(max_partial <= Schedule::kWindow + 2);
 }
 
+// The slaves' block size: inside the tiles wherever no pixel depends on the block grid.
+static void test_render_blocks_inside_tiles()
+{
+    ResolvedOptions no_aa;                       // Create_Ini leaves defaults out
+    CHECK(slave_render_block(no_aa, 80) == 20);  // the paper's tiles: 4 blocks a side
+    CHECK(slave_render_block(no_aa, 64) == 0);   // 32 divides it already
+    CHECK(slave_render_block(no_aa, 37) == 37);  // no divisor from 8 to 32
+    CHECK(slave_render_block(no_aa, 97) == 0);   // a large prime: keep the default
+    ResolvedOptions own = {{"Render_Block_Size", "16"}};
+    CHECK(slave_render_block(own, 80) == 0);     // the user's 16 divides 80
+    CHECK(slave_render_block(own, 72) == 24);
+    ResolvedOptions m2 = {{"Antialias", "On"}, {"Sampling_Method", "2"}};
+    CHECK(!pixels_depend_on_block_grid(m2) && slave_render_block(m2, 80) == 20);
+    ResolvedOptions m1 = {{"Antialias", "On"}, {"Antialias_Threshold", "0.3"}};
+    CHECK(pixels_depend_on_block_grid(m1) && slave_render_block(m1, 80) == 0);
+    ResolvedOptions off = {{"Antialias", "Off"}, {"Sampling_Method", "1"}};
+    CHECK(!pixels_depend_on_block_grid(off) && slave_render_block(off, 80) == 20);
+}
+
 int main()
 {
     test_sequence_ranges();
@@ -430,6 +450,7 @@ int main()
     test_straggler_duplicate();
     test_queued_job_is_not_a_straggler();
     test_repair();
+    test_render_blocks_inside_tiles();
     for (unsigned seed = 1; seed <= 50; seed++) {
         test_simulation(Division::Sequence, seed);
         test_simulation(Division::Frame, seed);

@@ -1,0 +1,30 @@
+// render_blocks.h - the render block size of the slaves' renderers.
+//
+// POV-Ray traces a frame in square render blocks (Render_Block_Size, default 32) on a grid
+// from the render area's corner, and a job traces every block its tiles meet (frame control).
+// A tile edge that cuts a block makes the slaves on both sides trace all of it: with the
+// paper's 80-pixel tiles that is a fifth more rays. Under antialiasing method 1 a pixel
+// depends on the block grid (each block traces a border around itself), so the grid must stay
+// the one a single process uses. Under every other setting no pixel depends on it (patch 0003
+// makes the shadow cache exact; see ../shared/notes/povray-internals.md, "Determinism"), and
+// a block size that divides the tile edge puts every block inside one tile.
+#pragma once
+
+#include "povray.h"
+
+namespace fc {
+
+// POV-Ray's own default (view.cpp), used when the options name none.
+const int kDefaultRenderBlock = 32;
+
+// Whether the resolved options (probe_resolved_options) antialias with method 1, the only
+// setting under which a pixel depends on the block grid.
+bool pixels_depend_on_block_grid(const ResolvedOptions &ini);
+
+// The block size the slaves should render tiles of `tile` pixels with, or 0 to keep the
+// user's options: 0 when pixels depend on the grid or the block size in force already divides
+// the tile; else the largest divisor of the tile from 8 to 32 (small blocks cost per-block
+// overhead), else the tile itself up to 64 pixels, else 0.
+int slave_render_block(const ResolvedOptions &ini, int tile);
+
+} // namespace fc
