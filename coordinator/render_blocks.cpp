@@ -39,10 +39,10 @@ int slave_render_block(const ResolvedOptions &ini, int tile)
     int current = int_option(ini, "Render_Block_Size", kDefaultRenderBlock);
     if (current >= 4 && tile % current == 0)
         return 0;
-    for (int d = 32; d >= 8; d--)
+    for (int d = kLargestBlock; d >= kSmallestBlock; d--)
         if (tile % d == 0)
             return d;
-    return tile <= 64 ? tile : 0;
+    return 0;
 }
 
 } // namespace fc

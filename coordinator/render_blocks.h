@@ -21,10 +21,16 @@ const int kDefaultRenderBlock = 32;
 // setting under which a pixel depends on the block grid.
 bool pixels_depend_on_block_grid(const ResolvedOptions &ini);
 
+// Blocks from 8 to 64 pixels a side. Every block costs the renderer a message and a set-up
+// (Newton at 320x240: 8-pixel blocks took 20% more CPU than 32-pixel ones, 20-pixel blocks
+// 6% more than 40-pixel ones), so larger is cheaper, while a slave's threads still share a
+// job's blocks.
+const int kSmallestBlock = 8, kLargestBlock = 64;
+
 // The block size the slaves should render tiles of `tile` pixels with, or 0 to keep the
 // user's options: 0 when pixels depend on the grid or the block size in force already divides
-// the tile; else the largest divisor of the tile from 8 to 32 (small blocks cost per-block
-// overhead), else the tile itself up to 64 pixels, else 0.
+// the tile; else the largest divisor of the tile from kSmallestBlock to kLargestBlock (40 for
+// the paper's 80), else 0.
 int slave_render_block(const ResolvedOptions &ini, int tile);
 
 } // namespace fc

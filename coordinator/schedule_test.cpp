@@ -418,19 +418,20 @@ static void test_simulation(Division div, unsigned seed)
 static void test_render_blocks_inside_tiles()
 {
     ResolvedOptions no_aa;                       // Create_Ini leaves defaults out
-    CHECK(slave_render_block(no_aa, 80) == 20);  // the paper's tiles: 4 blocks a side
+    CHECK(slave_render_block(no_aa, 80) == 40);  // the paper's tiles: 2 blocks a side
     CHECK(slave_render_block(no_aa, 64) == 0);   // 32 divides it already
-    CHECK(slave_render_block(no_aa, 37) == 37);  // no divisor from 8 to 32
-    CHECK(slave_render_block(no_aa, 97) == 0);   // a large prime: keep the default
+    CHECK(slave_render_block(no_aa, 37) == 37);  // the tile itself: one block
+    CHECK(slave_render_block(no_aa, 200) == 50);
+    CHECK(slave_render_block(no_aa, 97) == 0);   // a prime above 64: keep the default
     ResolvedOptions own = {{"Render_Block_Size", "16"}};
     CHECK(slave_render_block(own, 80) == 0);     // the user's 16 divides 80
-    CHECK(slave_render_block(own, 72) == 24);
+    CHECK(slave_render_block(own, 72) == 36);
     ResolvedOptions m2 = {{"Antialias", "On"}, {"Sampling_Method", "2"}};
-    CHECK(!pixels_depend_on_block_grid(m2) && slave_render_block(m2, 80) == 20);
+    CHECK(!pixels_depend_on_block_grid(m2) && slave_render_block(m2, 80) == 40);
     ResolvedOptions m1 = {{"Antialias", "On"}, {"Antialias_Threshold", "0.3"}};
     CHECK(pixels_depend_on_block_grid(m1) && slave_render_block(m1, 80) == 0);
     ResolvedOptions off = {{"Antialias", "Off"}, {"Sampling_Method", "1"}};
-    CHECK(!pixels_depend_on_block_grid(off) && slave_render_block(off, 80) == 20);
+    CHECK(!pixels_depend_on_block_grid(off) && slave_render_block(off, 80) == 40);
 }
 
 int main()
