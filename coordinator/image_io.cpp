@@ -3,6 +3,7 @@
 
 #include <dlfcn.h>
 
+#include <atomic>
 #include <mutex>
 #include <thread>
 
@@ -29,6 +30,7 @@ struct Plugin {
     ToHalfFn to_half = nullptr;
     FromHalfFn from_half = nullptr;
     std::string error;
+    std::atomic<bool> loading{false};   // the background load runs
 
     // A master that ends early (bad scene) must not leave the loader running.
     ~Plugin()
@@ -98,7 +100,16 @@ void preload_image_io()
     if (p.started)
         return;
     p.started = true;
-    p.loader = std::thread([&p] { p.load(); });
+    p.loading = true;
+    p.loader = std::thread([&p] {
+        p.load();
+        p.loading = false;
+    });
+}
+
+bool image_io_loading()
+{
+    return plugin().loading;
 }
 
 bool encode_image(const std::string &format, const std::string &compression, int width,

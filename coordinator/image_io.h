@@ -20,6 +20,9 @@ size_t pixel_type_bytes(PixelType t);
 // Start loading the plugin on a background thread (call early; the calls below wait for it).
 void preload_image_io();
 
+// Whether that background load still runs: a call below would wait for it.
+bool image_io_loading();
+
 // Encode width x height pixels in an OpenImageIO format ("targa", "png", "openexr") with
 // compression ("" = default) into out. False with err (the plugin missing included).
 bool encode_image(const std::string &format, const std::string &compression, int width,

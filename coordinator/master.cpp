@@ -239,6 +239,7 @@ bool Master::frame_finished(int index)
                         outdir_.c_str(), human_bytes(double(avail)).c_str(), resumed_ + rendered_,
                         missing);
         }
+        write_failed_ = true;
         fatal(msg);
         return false;
     }
@@ -338,11 +339,28 @@ void Master::on_frame(int src)
         fs.parses++;
         for (int t : fresh)
             fs.cells.push_back(CellStat{t, fr.job, host});
-        if (sched_->frame_done(idx) && !frame_finished(idx))
-            return;
+        if (sched_->frame_done(idx))
+            unwritten_.push_back(idx);
     }
     cancel_jobs(cancel);
+    // The slave's next job first: writing may wait (write_complete_frames).
     dispatch();
+    write_complete_frames(false);
+}
+
+// Write the complete frames, unless OpenImageIO still loads and wait is false: then they
+// stay in memory until it is ready (the receive loop comes back every tick, and the end of
+// the run waits), so that no slave waits for its next job meanwhile. After a failed write or
+// a shell-out that asked to stop, nothing more is written, as one POV-Ray process would.
+void Master::write_complete_frames(bool wait)
+{
+    if (unwritten_.empty() || (!wait && image_io_loading()))
+        return;
+    size_t k = 0;
+    while (k < unwritten_.size() && !write_failed_ && !quit_early_)
+        if (!frame_finished(unwritten_[k++]))
+            break;
+    unwritten_.erase(unwritten_.begin(), unwritten_.begin() + long(k));
 }
 
 void Master::on_progress(int src)
@@ -653,6 +671,7 @@ int Master::loop()
             fprintf(stderr, "fc-master: interrupted (%s): stopping the slaves\n",
                     strsignal(g_signal));
             shutdown_slaves();
+            write_complete_frames(true);    // what was rendered is kept
             return 128 + g_signal;
         }
         double wait = std::max(0.0, next_tick_ - now());
@@ -684,6 +703,7 @@ int Master::loop()
         }
         if (failed_)
             break;
+        write_complete_frames(false);
         if (now() < next_tick_)
             continue;
         next_tick_ = now() + kTick;
@@ -698,6 +718,8 @@ int Master::loop()
         }
         progress();
     }
+    // Complete frames are kept after a scene error too, as they are by one POV-Ray process.
+    write_complete_frames(true);
     if (failed_)
         return exit_code_ != 0 ? exit_code_ : 1;
     report_.clear_line();
