@@ -112,6 +112,14 @@ bool image_io_loading()
     return plugin().loading;
 }
 
+void wait_image_io()
+{
+    Plugin &p = plugin();
+    std::lock_guard<std::mutex> lock(p.mutex);
+    if (p.loader.joinable())
+        p.loader.join();
+}
+
 bool encode_image(const std::string &format, const std::string &compression, int width,
                   int height, PixelType type, const void *pixels, std::vector<uint8_t> &out,
                   std::string &err)

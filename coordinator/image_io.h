@@ -23,6 +23,11 @@ void preload_image_io();
 // Whether that background load still runs: a call below would wait for it.
 bool image_io_loading();
 
+// Wait for the background load to end. Call before the process exits: exit handlers that
+// run while the load is under way abort in OpenImageIO's own destructors (an assertion in
+// unordered_map_concurrent.h, seen when a render failed at once).
+void wait_image_io();
+
 // Encode width x height pixels in an OpenImageIO format ("targa", "png", "openexr") with
 // compression ("" = default) into out. False with err (the plugin missing included).
 bool encode_image(const std::string &format, const std::string &compression, int width,

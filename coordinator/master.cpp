@@ -740,5 +740,7 @@ int main(int argc, char **argv)
     setenv("OPENBLAS_NUM_THREADS", "1", 0);
     install_signal_handlers(on_signal);
     Master master(opt);
-    return master.run();
+    int rc = master.run();
+    wait_image_io();
+    return rc;
 }
