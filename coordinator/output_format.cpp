@@ -12,25 +12,11 @@ namespace fc {
 
 namespace {
 
-std::string get(const ResolvedOptions &ini, const char *key, const char *fallback)
-{
-    auto it = ini.find(key);
-    return it == ini.end() ? fallback : it->second;
-}
-
-bool is_on(const std::string &v)
-{
-    std::string s;
-    for (char c : v)
-        s += char(tolower((unsigned char)c));
-    return s == "on" || s == "true" || s == "yes" || s == "1";
-}
-
 bool diffusion(const ResolvedOptions &ini)
 {
-    if (!is_on(get(ini, "Dither", "off")))
+    if (!option_is_on(resolved_value(ini, "Dither", "off")))
         return false;
-    std::string m = get(ini, "Dither_Method", "FS");
+    std::string m = resolved_value(ini, "Dither_Method", "FS");
     for (char &c : m)
         c = char(toupper((unsigned char)c));
     return m == "D1" || m == "D2" || m == "FS";
@@ -44,7 +30,7 @@ const char *const kSupported =
 bool output_format(const ResolvedOptions &ini, OutputFormat &f, std::string &err)
 {
     f = OutputFormat();
-    std::string type = get(ini, "Output_File_Type", "T");
+    std::string type = resolved_value(ini, "Output_File_Type", "T");
     f.type = type.empty() ? 'T' : char(toupper((unsigned char)type[0]));
     switch (f.type) {
     case 'T':
@@ -61,7 +47,8 @@ bool output_format(const ResolvedOptions &ini, OutputFormat &f, std::string &err
         f.ext = ".png";
         f.fixed_size = false;
         // POV-Ray clips Bits_Per_Color to 5..16 and stores 5-8 bits in bytes, 9-16 in words.
-        f.bits = std::min(16, std::max(5, atoi(get(ini, "Bits_Per_Color", "8").c_str())));
+        int bits = atoi(resolved_value(ini, "Bits_Per_Color", "8").c_str());
+        f.bits = std::min(16, std::max(5, bits));
         if (f.bits > 8) {
             f.pixels = PixelType::U16;
             f.encoding = "rgb16";
@@ -90,23 +77,24 @@ bool output_format(const ResolvedOptions &ini, OutputFormat &f, std::string &err
         return false;
     }
     }
-    if (!is_on(get(ini, "Output_to_File", "on")) || !is_on(get(ini, "Output_To_File", "on"))) {
+    if (!option_is_on(resolved_value(ini, "Output_to_File", "on")) ||
+        !option_is_on(resolved_value(ini, "Output_To_File", "on"))) {
         err = "Output_To_File is off (-F): fc-master exists to write the frames; drop the option";
         return false;
     }
-    if (is_on(get(ini, "Output_Alpha", "off"))) {
+    if (option_is_on(resolved_value(ini, "Output_Alpha", "off"))) {
         err = "Output_Alpha (+UA) is not supported: fc-master writes frames without an alpha "
               "channel";
         return false;
     }
-    if (is_on(get(ini, "Grayscale_Output", "off"))) {
+    if (option_is_on(resolved_value(ini, "Grayscale_Output", "off"))) {
         err = "Grayscale_Output (+F...G) is not supported: fc-master writes colour frames";
         return false;
     }
     if (diffusion(ini) && f.pixels != PixelType::U8) {
         err = strf("diffusion dithering (Dither=on, Dither_Method %s) with %d bits per colour is "
                    "not supported: use Bits_Per_Color=8 or a Bayer method (B2, B3, B4)",
-                   get(ini, "Dither_Method", "FS").c_str(), f.bits);
+                   resolved_value(ini, "Dither_Method", "FS").c_str(), f.bits);
         return false;
     }
     return true;
@@ -114,7 +102,7 @@ bool output_format(const ResolvedOptions &ini, OutputFormat &f, std::string &err
 
 std::string format_from_name(const ResolvedOptions &ini)
 {
-    std::string name = get(ini, "Output_File_Name", "");
+    std::string name = resolved_value(ini, "Output_File_Name", "");
     auto ends = [&](const char *ext) {
         size_t n = strlen(ext);
         return name.size() > n && name.compare(name.size() - n, n, ext) == 0;

@@ -205,6 +205,20 @@ std::string ini_value(const std::string &v)
 
 } // namespace
 
+std::string resolved_value(const ResolvedOptions &ini, const char *key, const char *fallback)
+{
+    auto it = ini.find(key);
+    return it == ini.end() ? fallback : it->second;
+}
+
+bool option_is_on(const std::string &value)
+{
+    std::string s;
+    for (char c : value)
+        s += char(tolower((unsigned char)c));
+    return s == "on" || s == "true" || s == "yes" || s == "1";
+}
+
 bool probe_resolved_options(const std::string &renderer, const std::string &format,
                             const std::vector<std::string> &options, const std::string &cwd,
                             const std::string &tmpdir, double timeout, ResolvedOptions &out,

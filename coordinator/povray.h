@@ -51,6 +51,13 @@ bool probe_scene(const std::string &renderer, const std::string &format,
 // writes the INI file and stops before anything runs (patch 0020 opens the channel first).
 // A renderer without the frame channel writes none and is refused here.
 typedef std::map<std::string, std::string> ResolvedOptions;
+
+// A resolved option's value, or fallback when Create_Ini left it out (it writes only the
+// options that are not at their defaults).
+std::string resolved_value(const ResolvedOptions &ini, const char *key, const char *fallback);
+
+// Whether an INI switch's value is on (POV-Ray takes on, true, yes and 1, in any case).
+bool option_is_on(const std::string &value);
 bool probe_resolved_options(const std::string &renderer, const std::string &format,
                             const std::vector<std::string> &options, const std::string &cwd,
                             const std::string &tmpdir, double timeout, ResolvedOptions &out,

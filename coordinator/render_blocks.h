@@ -14,9 +14,6 @@
 
 namespace fc {
 
-// POV-Ray's own default (view.cpp), used when the options name none.
-const int kDefaultRenderBlock = 32;
-
 // Whether the resolved options (probe_resolved_options) antialias with method 1, the only
 // setting under which a pixel depends on the block grid.
 bool pixels_depend_on_block_grid(const ResolvedOptions &ini);
