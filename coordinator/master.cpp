@@ -343,14 +343,14 @@ void Master::on_frame(int src)
             unwritten_.push_back(idx);
     }
     cancel_jobs(cancel);
-    // The slave's next job first: writing may wait (write_complete_frames).
+    // The slave's next job goes out now; the receive loop writes the frame after this
+    // (write_complete_frames), since writing may wait.
     dispatch();
-    write_complete_frames(false);
 }
 
 // Write the complete frames, unless OpenImageIO still loads and wait is false: then they
-// stay in memory until it is ready (the receive loop comes back every tick, and the end of
-// the run waits), so that no slave waits for its next job meanwhile. After a failed write or
+// stay in memory until it is ready (the receive loop calls this after every message and
+// tick, and the end of the run waits), so that no slave waits for its next job meanwhile. After a failed write or
 // a shell-out that asked to stop, nothing more is written, as one POV-Ray process would.
 void Master::write_complete_frames(bool wait)
 {
