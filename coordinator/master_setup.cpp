@@ -329,7 +329,7 @@ bool Master::prepare_output()
     }
     if (opt_.preview)
         preview_.start(outdir_ + "/preview", scene_.width, scene_.height, format_.pixels,
-                       int(scene_.frames.size()));
+                       int(scene_.frames.size()), now());
 
     // Frames of another render (scene, options or renderer changed) must not be mixed in.
     Manifest now = manifest();

@@ -12,20 +12,20 @@
 
 namespace fc {
 
-void Preview::start(const std::string &dir, int width, int height, PixelType type, int frames)
+void Preview::start(const std::string &dir, int width, int height, PixelType type, int frames,
+                    double now)
 {
-    std::string err;
-    if (width <= 0 || height <= 0 || frames <= 0 || !make_dirs(dir, err)) {
-        if (!err.empty())
-            fprintf(stderr, "fc-master: warning: no preview: %s\n", err.c_str());
+    if (width <= 0 || height <= 0 || frames <= 0)
         return;
-    }
     on_ = true;
     dir_ = dir;
     width_ = width;
     height_ = height;
     frames_ = frames;
     type_ = type;
+    first_ = now + kFirstWrite;
+    written_ = access((dir + "/latest.png").c_str(), F_OK) == 0 ||
+               access((dir + "/contact-sheet.png").c_str(), F_OK) == 0;
     // Reduce by an integer factor (at least 2) so the sheet stays near 4 megapixels.
     double area = double(width) * double(height) * double(frames);
     factor_ = std::max(2, int(std::ceil(std::sqrt(area / 4.0e6))));
@@ -113,8 +113,14 @@ bool Preview::write_png(const std::string &name, int w, int h, const std::vector
 
 bool Preview::flush(double now, bool force, std::string &err)
 {
-    if (!on_ || !dirty_ || (!force && now - last_ < wait_))
+    if (!on_ || !dirty_ || (!force && (now < first_ || now - last_ < wait_)) ||
+        (force && !written_ && now < first_))
         return true;
+    if (!written_ && !make_dirs(dir_, err)) {   // made at the first write: none before
+        on_ = false;
+        return false;
+    }
+    written_ = true;
     last_ = now;
     dirty_ = false;
     const double start = fc::now();

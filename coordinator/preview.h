@@ -1,9 +1,12 @@
 // preview.h - a look at a long render while it runs: DIR/preview/latest.png (the frame
 // finished last, full size) and DIR/preview/contact-sheet.png (every frame finished so far,
-// reduced, in frame order, resumed ones included), rewritten at most every kInterval seconds
-// (and never more often than keeps the encoding under kMaxShare of the master's time) and at
-// the end, each written under a temporary name and renamed (a viewer never sees half a
-// file). 8-bit PNG whatever the output format: 16-bit samples keep their high byte, OpenEXR's
+// reduced, in frame order, resumed ones included), first written kFirstWrite seconds into the
+// render, then rewritten at most every kInterval seconds (and never more often than keeps the
+// encoding under kMaxShare of the master's time) and at the end, each written under a
+// temporary name and renamed (a viewer never sees half a file). A render that ends sooner
+// writes none: it is over before anyone could look, and two PNG encodings (one of them after
+// the last frame) took 5% of a 3-second render's wall time. Files an earlier run left are
+// brought up to date at the end all the same. 8-bit PNG whatever the output format: 16-bit samples keep their high byte, OpenEXR's
 // linear values are clipped and gamma-encoded (2.2) for the eye.
 //
 // The sheet is one image held in memory (at most about 4 megapixels whatever the frame count:
@@ -21,14 +24,16 @@ namespace fc {
 
 class Preview {
 public:
+    static constexpr double kFirstWrite = 5.0; // seconds into the render of the first write
     static constexpr double kInterval = 2.0;   // seconds between rewrites, at least
     // Share of the time the rewrites may take: on a 2-core host the master's CPU comes out of
     // the slaves' (a 1280x960 frame and its sheet took ~0.1 s to encode every 2 s, 5% of all
     // CPU in `perf`).
     static constexpr double kMaxShare = 0.01;
 
-    // Turn the preview on for frames of width x height with samples of type.
-    void start(const std::string &dir, int width, int height, PixelType type, int frames);
+    // Turn the preview on at time now for frames of width x height with samples of type.
+    void start(const std::string &dir, int width, int height, PixelType type, int frames,
+               double now);
     bool on() const { return on_; }
 
     // Frame index i finished (or was already complete): its stored samples.
@@ -58,6 +63,8 @@ private:
     int factor_ = 1, cols_ = 1, rows_ = 1, tw_ = 0, th_ = 0;
     std::vector<uint8_t> sheet_, latest_;
     bool dirty_ = false;
+    bool written_ = false;      // the files exist (written by this run or an earlier one)
+    double first_ = 0;          // when the first write is due
     double last_ = -1e9;
     double wait_ = kInterval;   // seconds until the next rewrite is due
 };

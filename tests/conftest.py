@@ -144,9 +144,10 @@ class CoordinatorRun:
         except OSError:
             return "(no trace)"
 
-    def start(self, args, cwd=COORDINATOR_SCENES, renderer=True, env=None):
-        """Start fc-master in the background; returns the Popen."""
-        p = subprocess.Popen(self.argv(args, renderer), cwd=cwd, env=self.env(env),
+    def start(self, args, cwd=COORDINATOR_SCENES, renderer=True, env=None, prefix=()):
+        """Start fc-master in the background (under the command prefix, if any); returns
+        the Popen."""
+        p = subprocess.Popen(self.argv(args, renderer, prefix), cwd=cwd, env=self.env(env),
                              stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
         self.procs.append(p)
         return p

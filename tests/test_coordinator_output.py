@@ -403,8 +403,9 @@ def test_unsupported_output_is_refused(coordinator, tmp_path, opt, words):
 def test_preview_while_rendering(coordinator, coordinator_references, tmp_path):
     out = tmp_path / "out"
     ref = coordinator_references.frames(SCENE, SLOW)
+    # On one processor the render lasts well beyond the preview's first write (5 s in).
     p = coordinator.start(["--no-fc", "--quiet", "--division", "frame", "--slaves", "2",
-                           SCENE] + SLOW + ["-o", str(out)])
+                           SCENE] + SLOW + ["-o", str(out)], prefix=["taskset", "-c", "0"])
     latest = out / "preview" / "latest.png"
     deadline = time.time() + 60
     while not latest.exists():
@@ -425,4 +426,32 @@ def test_preview_while_rendering(coordinator, coordinator_references, tmp_path):
         cell = sheet[(k // 6) * 120:(k // 6 + 1) * 120, (k % 6) * 160:(k % 6 + 1) * 160]
         # Invariant: the sheet holds every frame, in order, reduced.
         assert np.abs(cell - want).max() <= 1, name
+    assert_frames_exact(out, ref)
+
+
+def test_short_render_writes_no_preview(coordinator, coordinator_references, tmp_path):
+    out = tmp_path / "out"
+    r = coordinator.run(["--quiet", "--slaves", "2", SCENE] + SMALL + ["-o", str(out)])
+    assert r.returncode == 0, r.stderr
+    # Invariant: a render over before the preview's first write is due encodes no preview.
+    assert not (out / "preview").exists()
+    assert_frames_exact(out, coordinator_references.frames(SCENE, SMALL))
+
+
+def test_preview_left_by_earlier_run_is_brought_up_to_date(coordinator, coordinator_references,
+                                                           tmp_path):
+    out = tmp_path / "out"
+    ref = coordinator_references.frames(SCENE, SMALL)
+    stale = np.zeros((120, 160, 3), np.uint8)
+    (out / "preview").mkdir(parents=True)
+    import OpenImageIO as oiio
+    png = oiio.ImageOutput.create("png")
+    assert png.open(str(out / "preview" / "latest.png"), oiio.ImageSpec(160, 120, 3, "uint8"))
+    assert png.write_image(stale) and png.close()
+    r = coordinator.run(["--quiet", "--division", "sequence", "--slaves", "1", SCENE] + SMALL
+                        + ["-o", str(out)])
+    assert r.returncode == 0, r.stderr
+    # Invariant: preview files that exist show this render at its end, however short it was.
+    assert (load_rgb(out / "preview" / "latest.png") == ref[sorted(ref)[-1]]).all()
+    assert load_rgb(out / "preview" / "contact-sheet.png").shape[2] == 3
     assert_frames_exact(out, ref)
