@@ -39,8 +39,9 @@ void set_error(char *error, size_t size, const std::string &msg)
 } // namespace
 
 // Encode a 3-channel image in `format` (an OpenImageIO format name: "targa", "png",
-// "openexr") with the given compression ("" = the format's default) into a malloc'd buffer
-// (*out, *out_size; free it with fc_image_free). Returns 1, or 0 with error filled.
+// "openexr") with the given compression ("" = the format's default, "fast" = the quickest
+// encoding the format has) into a malloc'd buffer (*out, *out_size; free it with
+// fc_image_free). Returns 1, or 0 with error filled.
 extern "C" int fc_image_encode(const char *format, int width, int height, int type,
                                const void *pixels, const char *compression, unsigned char **out,
                                size_t *out_size, char *error, size_t error_size)
@@ -58,8 +59,18 @@ extern "C" int fc_image_encode(const char *format, int width, int height, int ty
         return 0;
     }
     OIIO::ImageSpec spec(width, height, 3, td);
-    if (compression && *compression)
+    if (compression && std::strcmp(compression, "fast") == 0) {
+        // PNG: no row filter and zlib level 1 encode 5x faster than OpenImageIO's default
+        // (every filter tried on each row, level 6), for a file about as small (measured on
+        // a contact sheet of Newton frames: 27 ms against 137 ms, 676 KB against 645 KB).
+        // OpenImageIO 2.4's PNG writer ignores "compression" = "zip:N".
+        if (std::strcmp(format, "png") == 0) {
+            spec.attribute("png:filter", 8);    // PNG_FILTER_NONE
+            spec.attribute("png:compressionLevel", 1);
+        }
+    } else if (compression && *compression) {
         spec.attribute("compression", compression);
+    }
     std::vector<unsigned char> bytes;
     OIIO::Filesystem::IOVecOutput proxy(bytes);
     // The name only tells the writer which file it writes; the bytes go to the proxy.
