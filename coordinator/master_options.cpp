@@ -32,7 +32,8 @@ const char *const kHelp =
     "  --tile N                tile size in pixels for frame/hybrid division (default 64)\n"
     "  --ranges N              initial frame ranges: sequence (default: one per slave),\n"
     "                          hybrid (default: one per two slaves)\n"
-    "  --slaves N              slaves per host (default: one per core)\n"
+    "  --slaves N              slaves per host, each renderer using cores/N threads\n"
+    "                          (default: one with frame coherence, one per core with --no-fc)\n"
     "  --hostfile FILE         pvmd host file: its hosts are added to the virtual machine\n"
     "                          (each must be added, or nothing renders)\n"
     "  --pvmd-name NAME        host name of a private pvmd (-nNAME; needed to add hosts\n"
@@ -184,6 +185,13 @@ Options parse_options(int argc, char **argv)
     }
     if (o.pov.empty())
         usage_error("no scene given");
+    // With frame coherence one slave per host, its renderer on every core: a renderer's
+    // first frame is traced in full and each renderer parses every frame it has tiles of, so
+    // a slave per core pays both once per core (sequence division on 2 cores: 1.08 against
+    // 1.04 of one process, Newton 640x480, 45 frames). Without fc, one per core: their
+    // parses then overlap the others' tracing.
+    if (o.slaves == 0 && o.fc)
+        o.slaves = 1;
     return o;
 }
 

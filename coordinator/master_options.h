@@ -13,7 +13,7 @@ struct Options {
     Division division = Division::Frame;
     int tile = 64;              // a multiple of POV-Ray's 32-pixel render blocks
     int ranges = 0;             // 0 = the division's default
-    int slaves = 0;             // 0 = one per core
+    int slaves = 0;             // 0 = one per core (only with --no-fc: fc's default is 1)
     std::string hostfile;
     std::string pvmd_name;
     bool force_private = false;

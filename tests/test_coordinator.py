@@ -261,6 +261,35 @@ def test_joins_running_virtual_machine(coordinator, coordinator_references, tmp_
     assert coordinator.wait_no_processes() == []
 
 
+@pytest.mark.parametrize("fc", [False, True], ids=["no-fc", "fc"])
+def test_default_slaves_per_host(coordinator, coordinator_references, tmp_path, fc):
+    out = tmp_path / "out"
+    stats = tmp_path / "stats.json"
+    log = tmp_path / "renderers.log"
+    script = tmp_path / "logging-povray"
+    script.write_text(f"""#!/bin/sh
+case "$*" in *Frame_Control=*) echo "$*" >> {log} ;; esac
+exec {coordinator_renderer()} "$@"
+""")
+    script.chmod(0o755)
+    r = coordinator.run((["--no-fc"] if not fc else []) +
+                        ["--quiet", "--povray", str(script), "--division", "frame",
+                         "--stats", str(stats), SCENE] + SMALL + ["-o", str(out)], renderer=False)
+    assert r.returncode == 0, r.stderr
+    cores = os.cpu_count()
+    renderers = log.read_text().splitlines()
+    # Invariant: with fc one slave per host, its renderer on every core (one first frame
+    # and one parse per frame for the host); without fc one single-threaded slave per core.
+    want = (1, cores) if fc else (cores, 1)
+    assert [h["slaves"] for h in coordinator_stats(stats)["hosts"]] == [want[0]]
+    assert len(renderers) == want[0], renderers
+    for line in renderers:
+        # fc-slave puts +WT<threads> first; a later +WT would override it
+        threads = [w for w in line.split() if w.startswith("+WT")]
+        assert threads == [f"+WT{want[1]}"], line
+    assert_same_frames(out, coordinator_references.frames(SCENE, SMALL))
+
+
 # --- faults ----------------------------------------------------------------------------------
 
 @pytest.mark.parametrize("division", ["sequence", "frame"])
