@@ -10,9 +10,8 @@ namespace fc {
 
 namespace {
 
-// Move tiles while a slave's share exceeds its speed's by this much: by little when moves are
-// free (no fc), by more when a move costs its new slave a fresh renderer.
-const double kImbalanceCheap = 1.05;
+// With fc, move tiles while a slave's share exceeds its speed's by this much: a move costs its
+// new slave a full trace of the tile.
 const double kImbalance = 1.2;
 const double kSpeedWeight = 0.3;    // weight of the newest measurement in a slave's speed
 
@@ -266,10 +265,14 @@ void Schedule::divide(int ri, int index)
         if (o != r.owner.end() && load.count(o->second))
             first_division = false;
     }
-    if (first_division) {
+    if (first_division || cheap_moves_) {
         // Tiles dealt in raster order to the member furthest below its share (by speed):
         // every slave gets tiles all over the frame, so a region that is expensive to render
         // (frame coherence re-traces only what moved) is shared instead of holding one back.
+        // Without fc every frame is dealt afresh: no renderer keeps state in its tiles, and
+        // tiles spread over the frame keep a slave's measured pixels per second free of
+        // where its tiles lie (moving the tiles nearest a slave's own, as with fc, can give
+        // a slave a cluster of cheap or dear tiles and skew its speed).
         for (int t : todo) {
             int best = m[0];
             for (int s : m)
@@ -299,15 +302,14 @@ void Schedule::divide(int ri, int index)
         }
         // Move tiles from the most to the least loaded member while it pays.
         bool moved = false;
-        bool may_move = cheap_moves_ || (r.lagging && index - r.last_move >= kMoveGap);
+        bool may_move = r.lagging && index - r.last_move >= kMoveGap;
         for (int moves = 0; may_move && moves < tiles(); moves++) {
             int over = m[0], under = m[0];
             for (int s : m) {
                 if (load[s] / target[s] > load[over] / target[over]) over = s;
                 if (load[s] / target[s] < load[under] / target[under]) under = s;
             }
-            double limit = cheap_moves_ ? kImbalanceCheap : kImbalance;
-            if (over == under || share[over].size() <= 1 || load[over] / target[over] <= limit)
+            if (over == under || share[over].size() <= 1 || load[over] / target[over] <= kImbalance)
                 break;
             // The tile of `over` nearest to `under`'s tiles (raster distance) keeps shares compact.
             int pick = -1;

@@ -21,7 +21,8 @@
 // division moves tiles from the slowest to the fastest slaves (by measured speed) until no
 // share exceeds its speed's by more than 20%, at most once every kMoveGap frames: with frame
 // coherence tiles move only when the slaves really drift apart, since a moved tile costs a
-// full re-trace on its new slave (and such a frame does not count in the slave's speed). Without fc (set_cheap_moves) every division balances, to 5%.
+// full re-trace on its new slave (and such a frame does not count in the slave's speed).
+// Without fc (set_cheap_moves) every frame's tiles are dealt afresh in raster order by speed.
 //
 // Load balancing: a slave whose range is finished joins the range with the most work left per
 // slave (frame division) or splits it, taking the later part of its undivided frames
@@ -96,7 +97,7 @@ public:
     void plan(int parts, int slaves = 0);
 
     // Without frame coherence a moved tile costs its new slave nothing extra: then every
-    // division balances by speed, not only after a slave had to wait.
+    // frame is dealt afresh by speed, not only after a slave had to wait.
     void set_cheap_moves(bool cheap) { cheap_moves_ = cheap; }
     // With frame coherence a renderer's first frame is traced in full: it costs `frames`
     // coherent frames (measured). A split then gives the newcomer as many frames as let both

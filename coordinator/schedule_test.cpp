@@ -127,6 +127,35 @@ static void test_cheap_moves_balance_every_frame()
     CHECK(c && c->index == 1 && c->tiles.size() >= 7);
 }
 
+static void test_cheap_moves_deal_every_frame_afresh()
+{
+    // Without fc a frame's tiles go out as if it were the first frame at the slaves' current
+    // speeds, whoever had them before: spread over the frame, not the tiles nearest a
+    // slave's old share.
+    Schedule s(make_tiles(kArea, 40), 10, Division::Frame);
+    s.set_cheap_moves(true);
+    s.add_slave(1, 100);
+    s.add_slave(2, 200);
+    s.plan(1);
+    Job a = *s.next_job(1, 0, true), b = *s.next_job(2, 0, true);
+    s.note_speed(1, 3e5, 1.0);
+    s.note_speed(2, 1e5, 1.0);
+    deliver(s, a);
+    deliver(s, b);
+    std::vector<int> later = s.next_job(2, 1, true)->tiles;
+
+    Schedule fresh(make_tiles(kArea, 40), 10, Division::Frame);
+    fresh.set_cheap_moves(true);
+    fresh.add_slave(1, 100);
+    fresh.add_slave(2, 200);
+    fresh.note_speed(1, 3e5, 1.0);
+    fresh.note_speed(2, 1e5, 1.0);
+    fresh.plan(1);
+    fresh.next_job(1, 0, true);
+    CHECK(later == fresh.next_job(2, 0, true)->tiles);
+    CHECK(later.size() == 3 && later.front() < 6 && later.back() >= 6);
+}
+
 static void test_more_slaves_than_tiles()
 {
     Schedule s(make_tiles(kArea, 80), 12, Division::Frame);     // 4 tiles
@@ -440,6 +469,7 @@ int main()
     test_frame_division_keeps_tiles();
     test_window_and_rebalance();
     test_cheap_moves_balance_every_frame();
+    test_cheap_moves_deal_every_frame_afresh();
     test_more_slaves_than_tiles();
     test_resume_skips_done_frames();
     test_idle_slave_splits_range();
