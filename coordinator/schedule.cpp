@@ -220,7 +220,7 @@ long Schedule::range_work(const Range &range) const
 // Divide frame `index` of range r among its members: each keeps the tiles it had, new tiles
 // go to the least loaded, and tiles move from the most to the least loaded member (by speed)
 // only while the imbalance exceeds kImbalance.
-void Schedule::divide(int ri, int index)
+void Schedule::divide(int ri, int index, double t)
 {
     Range &r = ranges_[size_t(ri)];
     const std::vector<int> &m = r.members;
@@ -259,6 +259,8 @@ void Schedule::divide(int ri, int index)
         load[s] = 0;
         target[s] = area * speed[s] / total_speed;
     }
+    if (cheap_moves_)
+        finish_together(r, index, t, area, speed, target);
     bool first_division = true;
     for (int t : todo) {
         auto o = r.owner.find(t);
@@ -349,6 +351,61 @@ void Schedule::divide(int ri, int index)
     }
 }
 
+// Without fc, shares that let every member finish frame `index` at the same time: a member
+// still busy with earlier work (its live jobs, its reserved shares of earlier frames) starts
+// later and gets less, one that ran ahead gets more. Shares by speed alone keep a lead for
+// good: at 1280x960 the full-core host of newton-table finished its last frame 3.8 s before
+// the half-core ones, which were two frames behind since the first frames (divided before
+// any speed was measured). A member free only after the others finish gets a small share
+// rather than none, so that every slave keeps a measured speed.
+void Schedule::finish_together(const Range &r, int index, double t, double area,
+                               const std::map<int, double> &speed,
+                               std::map<int, double> &target) const
+{
+    std::vector<std::pair<double, int>> free_at;    // seconds until the member is free
+    for (int s : r.members) {
+        double work = 0;
+        for (auto &kv : jobs_) {
+            const Job &j = kv.second;
+            if (!j.live || j.slave != s)
+                continue;
+            double pixels = 0;
+            for (int tile : missing(j.index, j.tiles))
+                pixels += tiles_[size_t(tile)].area();
+            if (j.rendering >= 0)
+                pixels = std::max(0.0, pixels - speed.at(s) * (t - j.rendering));
+            work += pixels;
+        }
+        for (auto &kv : r.reserved) {
+            if (kv.first >= index)
+                continue;
+            auto mine = kv.second.find(s);
+            if (mine != kv.second.end())
+                for (int tile : missing(kv.first, mine->second))
+                    work += tiles_[size_t(tile)].area();
+        }
+        free_at.push_back({work / speed.at(s), s});
+    }
+    std::sort(free_at.begin(), free_at.end());
+    // Water filling: the finish time T at which the members free before it, each rendering
+    // at its speed from when it is free, cover the frame's area.
+    double rate = 0, covered = 0, finish = 0;
+    size_t n = 0;
+    while (n < free_at.size()) {
+        double start = free_at[n].first;
+        if (rate > 0 && covered + rate * (start - finish) >= area)
+            break;
+        covered += rate * (start - finish);
+        finish = start;
+        rate += speed.at(free_at[n].second);
+        n++;
+    }
+    finish += (area - covered) / rate;
+    const double floor = 0.05 * area / double(r.members.size());
+    for (auto &fs : free_at)
+        target[fs.second] = std::max(floor, speed.at(fs.second) * (finish - fs.first));
+}
+
 const Job *Schedule::take_orphan(int slave, double t)
 {
     int host = slaves_[slave].host;
@@ -389,7 +446,7 @@ const Job *Schedule::take_from_range(int slave, double t)
                 r.lagging = r.members.size() > 1;
                 return nullptr;     // far enough ahead: wait for the others
             }
-            divide(s.range, r.frontier);
+            divide(s.range, r.frontier, t);
             r.frontier++;
             continue;
         }

@@ -168,7 +168,10 @@ private:
     const Job *take_from_range(int slave, double t);
     bool find_range(int slave);
     const Job *duplicate(int slave, double t);
-    void divide(int r, int index);
+    void divide(int r, int index, double t);
+    void finish_together(const Range &r, int index, double t, double area,
+                         const std::map<int, double> &speed,
+                         std::map<int, double> &target) const;
     void leave_range(int slave);
     void orphan(int index, const std::vector<int> &tiles, int failures, int avoid_host);
     std::vector<int> missing(int index, const std::vector<int> &tiles) const;
