@@ -217,10 +217,11 @@ long Schedule::range_work(const Range &range) const
     return long(range.hi - range.frontier + 1) * area;
 }
 
-// Divide frame `index` of range r among its members: each keeps the tiles it had, new tiles
-// go to the least loaded, and tiles move from the most to the least loaded member (by speed)
-// only while the imbalance exceeds kImbalance.
-void Schedule::divide(int ri, int index, double t)
+// Divide frame `index` of range r among its members at time `when`. With fc each keeps the
+// tiles it had, new tiles go to the least loaded, and tiles move from the most to the least
+// loaded member (by speed) only while the imbalance exceeds kImbalance; without fc the tiles
+// are dealt afresh in shares that let the members finish together (finish_together).
+void Schedule::divide(int ri, int index, double when)
 {
     Range &r = ranges_[size_t(ri)];
     const std::vector<int> &m = r.members;
@@ -260,7 +261,7 @@ void Schedule::divide(int ri, int index, double t)
         target[s] = area * speed[s] / total_speed;
     }
     if (cheap_moves_)
-        finish_together(r, index, t, area, speed, target);
+        finish_together(r, index, when, area, speed, target);
     bool first_division = true;
     for (int t : todo) {
         auto o = r.owner.find(t);
@@ -358,7 +359,7 @@ void Schedule::divide(int ri, int index, double t)
 // the half-core ones, which were two frames behind since the first frames (divided before
 // any speed was measured). A member free only after the others finish gets a small share
 // rather than none, so that every slave keeps a measured speed.
-void Schedule::finish_together(const Range &r, int index, double t, double area,
+void Schedule::finish_together(const Range &r, int index, double when, double area,
                                const std::map<int, double> &speed,
                                std::map<int, double> &target) const
 {
@@ -373,7 +374,7 @@ void Schedule::finish_together(const Range &r, int index, double t, double area,
             for (int tile : missing(j.index, j.tiles))
                 pixels += tiles_[size_t(tile)].area();
             if (j.rendering >= 0)
-                pixels = std::max(0.0, pixels - speed.at(s) * (t - j.rendering));
+                pixels = std::max(0.0, pixels - speed.at(s) * (when - j.rendering));
             work += pixels;
         }
         for (auto &kv : r.reserved) {

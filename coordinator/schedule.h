@@ -22,7 +22,8 @@
 // share exceeds its speed's by more than 20%, at most once every kMoveGap frames: with frame
 // coherence tiles move only when the slaves really drift apart, since a moved tile costs a
 // full re-trace on its new slave (and such a frame does not count in the slave's speed).
-// Without fc (set_cheap_moves) every frame's tiles are dealt afresh in raster order by speed.
+// Without fc (set_cheap_moves) every frame's tiles are dealt afresh in raster order, in shares
+// that let the slaves finish it together (by speed and by the work each still has queued).
 //
 // Load balancing: a slave whose range is finished joins the range with the most work left per
 // slave (frame division) or splits it, taking the later part of its undivided frames
@@ -168,8 +169,8 @@ private:
     const Job *take_from_range(int slave, double t);
     bool find_range(int slave);
     const Job *duplicate(int slave, double t);
-    void divide(int r, int index, double t);
-    void finish_together(const Range &r, int index, double t, double area,
+    void divide(int r, int index, double when);
+    void finish_together(const Range &r, int index, double when, double area,
                          const std::map<int, double> &speed,
                          std::map<int, double> &target) const;
     void leave_range(int slave);
