@@ -326,7 +326,9 @@ def test_frames_complete_in_order_while_rendering(coordinator, coordinator_refer
     # from the start, and the master holds a few frames, however many the animation has.
     out = tmp_path / "out"
     stats = tmp_path / "stats.json"
-    opts = ["+W160", "+H120", "+KFI1", "+KFF24", "+A0.1", "+AM2", "+R3"]
+    # 48 frames: the first frame's time is mostly the renderers' start, and the whole run
+    # must be long beside it for "from the start" to show.
+    opts = ["+W160", "+H120", "+KFI1", "+KFF48", "+A0.1", "+AM2", "+R3"]
     r = coordinator.run(["--no-fc", "--quiet", "--division", "frame", "--tile", "40",
                          "--slaves", "2", "--stats", str(stats), SCENE] + opts +
                         ["-o", str(out)])
@@ -694,7 +696,8 @@ def test_help(coordinator):
 # --- progress and statistics -----------------------------------------------------------------
 
 def test_progress_lines_and_summary(coordinator, tmp_path):
-    r = coordinator.run(["--no-fc", "--progress", "0.3", "--slaves", "2", SCENE, "+W160",
+    # A line every 0.1 s: the render takes about half a second.
+    r = coordinator.run(["--no-fc", "--progress", "0.1", "--slaves", "2", SCENE, "+W160",
                          "+H120", "+KFI1", "+KFF8", "+A0.1", "+AM2", "+R3", "-o",
                          str(tmp_path / "out")])
     assert r.returncode == 0, r.stderr
