@@ -29,7 +29,8 @@ bool image_io_loading();
 void wait_image_io();
 
 // Encode width x height pixels in an OpenImageIO format ("targa", "png", "openexr") with
-// compression ("" = default, "fast" = the quickest encoding) into out. False with err (the plugin missing included).
+// compression ("" = default, "fast" = the quickest encoding) into out. False with err (the
+// plugin missing included).
 bool encode_image(const std::string &format, const std::string &compression, int width,
                   int height, PixelType type, const void *pixels, std::vector<uint8_t> &out,
                   std::string &err);

@@ -350,8 +350,9 @@ void Master::on_frame(int src)
 
 // Write the complete frames, unless OpenImageIO still loads and wait is false: then they
 // stay in memory until it is ready (the receive loop calls this after every message and
-// tick, and the end of the run waits), so that no slave waits for its next job meanwhile. After a failed write or
-// a shell-out that asked to stop, nothing more is written, as one POV-Ray process would.
+// tick, and the end of the run waits), so that no slave waits for its next job meanwhile.
+// After a failed write or a shell-out that asked to stop, nothing more is written, as one
+// POV-Ray process would.
 void Master::write_complete_frames(bool wait)
 {
     if (unwritten_.empty() || (!wait && image_io_loading()))

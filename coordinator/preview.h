@@ -6,8 +6,9 @@
 // temporary name and renamed (a viewer never sees half a file). A render that ends sooner
 // writes none: it is over before anyone could look, and two PNG encodings (one of them after
 // the last frame) took 5% of a 3-second render's wall time. Files an earlier run left are
-// brought up to date at the end all the same. 8-bit PNG whatever the output format: 16-bit samples keep their high byte, OpenEXR's
-// linear values are clipped and gamma-encoded (2.2) for the eye.
+// brought up to date at the end all the same. 8-bit PNG whatever the output format: 16-bit
+// samples keep their high byte, OpenEXR's linear values are clipped and gamma-encoded (2.2)
+// for the eye.
 //
 // The sheet is one image held in memory (at most about 4 megapixels whatever the frame count:
 // frames are reduced by an integer factor, box-filtered); a frame is pasted in once, so the

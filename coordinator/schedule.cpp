@@ -363,30 +363,37 @@ void Schedule::finish_together(const Range &r, int index, double when, double ar
                                const std::map<int, double> &speed,
                                std::map<int, double> &target) const
 {
-    std::vector<std::pair<double, int>> free_at;    // seconds until the member is free
-    for (int s : r.members) {
-        double work = 0;
-        for (auto &kv : jobs_) {
-            const Job &j = kv.second;
-            if (!j.live || j.slave != s)
-                continue;
-            double pixels = 0;
-            for (int tile : missing(j.index, j.tiles))
-                pixels += tiles_[size_t(tile)].area();
-            if (j.rendering >= 0)
-                pixels = std::max(0.0, pixels - speed.at(s) * (when - j.rendering));
-            work += pixels;
-        }
-        for (auto &kv : r.reserved) {
-            if (kv.first >= index)
-                continue;
-            auto mine = kv.second.find(s);
-            if (mine != kv.second.end())
-                for (int tile : missing(kv.first, mine->second))
-                    work += tiles_[size_t(tile)].area();
-        }
-        free_at.push_back({work / speed.at(s), s});
+    auto pixels_missing = [&](int frame, const std::vector<int> &tiles) {
+        double pixels = 0;
+        for (int tile : missing(frame, tiles))
+            pixels += tiles_[size_t(tile)].area();
+        return pixels;
+    };
+    std::map<int, double> work;     // pixels each member still has to render before `index`
+    for (int s : r.members)
+        work[s] = 0;
+    for (auto &kv : jobs_) {
+        const Job &j = kv.second;
+        auto w = work.find(j.slave);
+        if (!j.live || w == work.end())
+            continue;
+        double pixels = pixels_missing(j.index, j.tiles);
+        if (j.rendering >= 0)
+            pixels = std::max(0.0, pixels - speed.at(j.slave) * (when - j.rendering));
+        w->second += pixels;
     }
+    for (auto &frame : r.reserved) {
+        if (frame.first >= index)
+            continue;
+        for (auto &share : frame.second) {
+            auto w = work.find(share.first);
+            if (w != work.end())
+                w->second += pixels_missing(frame.first, share.second);
+        }
+    }
+    std::vector<std::pair<double, int>> free_at;    // seconds until the member is free
+    for (auto &w : work)
+        free_at.push_back({w.second / speed.at(w.first), w.first});
     std::sort(free_at.begin(), free_at.end());
     // Water filling: the finish time T at which the members free before it, each rendering
     // at its speed from when it is free, cover the frame's area.

@@ -106,12 +106,18 @@ static void test_window_and_rebalance()
     CHECK(mine.size() > 6);
 }
 
-static void test_cheap_moves_balance_every_frame()
+// Without fc (moves are free): slaves 1 and 2, on hosts of their own.
+static void two_slaves_without_fc(Schedule &s)
 {
-    Schedule s(make_tiles(kArea, 40), 10, Division::Frame);
     s.set_cheap_moves(true);
     s.add_slave(1, 100);
     s.add_slave(2, 200);
+}
+
+static void test_cheap_moves_balance_every_frame()
+{
+    Schedule s(make_tiles(kArea, 40), 10, Division::Frame);
+    two_slaves_without_fc(s);
     s.plan(1);
     const Job *a = s.next_job(1, 0, true);
     Job first_a = *a;
@@ -133,9 +139,7 @@ static void test_cheap_moves_deal_every_frame_afresh()
     // speeds, whoever had them before: spread over the frame, not the tiles nearest a
     // slave's old share.
     Schedule s(make_tiles(kArea, 40), 10, Division::Frame);
-    s.set_cheap_moves(true);
-    s.add_slave(1, 100);
-    s.add_slave(2, 200);
+    two_slaves_without_fc(s);
     s.plan(1);
     Job a = *s.next_job(1, 0, true), b = *s.next_job(2, 0, true);
     s.note_speed(1, 3e5, 1.0);
@@ -145,9 +149,7 @@ static void test_cheap_moves_deal_every_frame_afresh()
     std::vector<int> later = s.next_job(2, 1, true)->tiles;
 
     Schedule fresh(make_tiles(kArea, 40), 10, Division::Frame);
-    fresh.set_cheap_moves(true);
-    fresh.add_slave(1, 100);
-    fresh.add_slave(2, 200);
+    two_slaves_without_fc(fresh);
     fresh.note_speed(1, 3e5, 1.0);
     fresh.note_speed(2, 1e5, 1.0);
     fresh.plan(1);
@@ -162,9 +164,7 @@ static void test_cheap_moves_let_slaves_finish_together()
     // speeds, but slave 2 has all of its frame-0 share (6 tiles of 1600 pixels, 0.096 s) to
     // go when slave 1 asks for frame 1. Both then finish frame 1 at 0.144 s: 9 tiles and 3.
     Schedule s(make_tiles(kArea, 40), 10, Division::Frame);
-    s.set_cheap_moves(true);
-    s.add_slave(1, 100);
-    s.add_slave(2, 200);
+    two_slaves_without_fc(s);
     s.plan(1);
     Job a = *s.next_job(1, 0, true);
     CHECK(s.next_job(2, 0, true)->tiles.size() == 6);
