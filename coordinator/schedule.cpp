@@ -207,6 +207,14 @@ int Schedule::oldest_unfinished(Range &range) const
     return range.oldest;
 }
 
+int Schedule::window(const Range &range) const
+{
+    // Whole frames reach the master complete (it holds none of them), but every member has up
+    // to two queued: the window must not stop a fast member while the slowest renders its two.
+    return cheap_moves_ && range.members.size() > 1 ? kWindow + 2 * int(range.members.size())
+                                                     : kWindow;
+}
+
 long Schedule::range_work(const Range &range) const
 {
     if (range.frontier > range.hi)
@@ -219,8 +227,10 @@ long Schedule::range_work(const Range &range) const
 
 // Divide frame `index` of range r among its members at time `when`. With fc each keeps the
 // tiles it had, new tiles go to the least loaded, and tiles move from the most to the least
-// loaded member (by speed) only while the imbalance exceeds kImbalance; without fc the tiles
-// are dealt afresh in shares that let the members finish together (finish_together).
+// loaded member (by speed) only while the imbalance exceeds kImbalance. Without fc the frame
+// goes whole to the member that would finish it first while enough frames follow it to keep
+// the others busy (whole_frames), and the last few are dealt afresh in shares that let the
+// members finish together (finish_together).
 void Schedule::divide(int ri, int index, double when)
 {
     Range &r = ranges_[size_t(ri)];
@@ -254,6 +264,16 @@ void Schedule::divide(int ri, int index, double when)
     double area = 0;
     for (int t : todo)
         area += tiles_[size_t(t)].area();
+    if (cheap_moves_ && whole_frames(r, index, speed)) {
+        const std::map<int, double> free_at = seconds_until_free(r, index, when, speed);
+        int first = m[0];
+        for (int s : m)
+            if (free_at.at(s) + area / speed[s] < free_at.at(first) + area / speed[first])
+                first = s;
+        r.reserved[index][first] = todo;
+        r.lagging = false;
+        return;
+    }
     std::map<int, double> load, target;
     std::map<int, std::vector<int>> share;
     for (int s : m) {
@@ -352,16 +372,28 @@ void Schedule::divide(int ri, int index, double when)
     }
 }
 
-// Without fc, shares that let every member finish frame `index` at the same time: a member
-// still busy with earlier work (its live jobs, its reserved shares of earlier frames) starts
-// later and gets less, one that ran ahead gets more. Shares by speed alone keep a lead for
-// good: at 1280x960 the full-core host of newton-table finished its last frame 3.8 s before
-// the half-core ones, which were two frames behind since the first frames (divided before
-// any speed was measured). A member free only after the others finish gets a small share
-// rather than none, so that every slave keeps a measured speed.
-void Schedule::finish_together(const Range &r, int index, double when, double area,
-                               const std::map<int, double> &speed,
-                               std::map<int, double> &target) const
+// Without fc a job's fixed costs (its renderer parses the frame and sets it up, its result
+// is a message of its own) are paid once per member that holds tiles of a frame: at 320x240
+// Newton's parse alone is a tenth of a frame, so dividing every frame among three slaves
+// cost 11% more CPU than whole frames (sequence division). Whole frames leave the members'
+// finish times up to one frame of the slowest apart, which dividing the last frames evens
+// out: as many as the members render in the time the slowest renders one, and at least one
+// per member.
+bool Schedule::whole_frames(const Range &r, int index, const std::map<int, double> &speed) const
+{
+    double total = 0, slowest = 0;
+    for (auto &kv : speed) {
+        total += kv.second;
+        slowest = slowest > 0 ? std::min(slowest, kv.second) : kv.second;
+    }
+    const double tail = std::max(double(speed.size()), std::ceil(total / slowest));
+    return double(r.hi - index) >= tail;
+}
+
+// Seconds until each member of r is free for frame `index`: its live jobs (less what it
+// rendered of the one it renders now) and its reserved shares of earlier frames, at its speed.
+std::map<int, double> Schedule::seconds_until_free(const Range &r, int index, double when,
+                                                   const std::map<int, double> &speed) const
 {
     auto pixels_missing = [&](int frame, const std::vector<int> &tiles) {
         double pixels = 0;
@@ -391,9 +423,26 @@ void Schedule::finish_together(const Range &r, int index, double when, double ar
                 w->second += pixels_missing(frame.first, share.second);
         }
     }
-    std::vector<std::pair<double, int>> free_at;    // seconds until the member is free
+    std::map<int, double> free_at;
     for (auto &w : work)
-        free_at.push_back({w.second / speed.at(w.first), w.first});
+        free_at[w.first] = w.second / speed.at(w.first);
+    return free_at;
+}
+
+// Without fc, shares that let every member finish frame `index` at the same time: a member
+// still busy with earlier work (its live jobs, its reserved shares of earlier frames) starts
+// later and gets less, one that ran ahead gets more. Shares by speed alone keep a lead for
+// good: at 1280x960 the full-core host of newton-table finished its last frame 3.8 s before
+// the half-core ones, which were two frames behind since the first frames (divided before
+// any speed was measured). A member free only after the others finish gets a small share
+// rather than none, so that every slave keeps a measured speed.
+void Schedule::finish_together(const Range &r, int index, double when, double area,
+                               const std::map<int, double> &speed,
+                               std::map<int, double> &target) const
+{
+    std::vector<std::pair<double, int>> free_at;    // seconds until the member is free
+    for (auto &kv : seconds_until_free(r, index, when, speed))
+        free_at.push_back({kv.second, kv.first});
     std::sort(free_at.begin(), free_at.end());
     // Water filling: the finish time T at which the members free before it, each rendering
     // at its speed from when it is free, cover the frame's area.
@@ -450,7 +499,7 @@ const Job *Schedule::take_from_range(int slave, double t)
             return nullptr;
         }
         if (s.cursor >= r.frontier) {
-            if (r.frontier - oldest_unfinished(r) >= kWindow) {
+            if (r.frontier - oldest_unfinished(r) >= window(r)) {
                 r.lagging = r.members.size() > 1;
                 return nullptr;     // far enough ahead: wait for the others
             }

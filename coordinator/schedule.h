@@ -22,8 +22,13 @@
 // share exceeds its speed's by more than 20%, at most once every kMoveGap frames: with frame
 // coherence tiles move only when the slaves really drift apart, since a moved tile costs a
 // full re-trace on its new slave (and such a frame does not count in the slave's speed).
-// Without fc (set_cheap_moves) every frame's tiles are dealt afresh in raster order, in shares
-// that let the slaves finish it together (by speed and by the work each still has queued).
+// Without fc (set_cheap_moves) no renderer keeps state in its tiles, and what a job costs
+// beyond its pixels (a parse and a frame's set-up) is paid once per slave that holds tiles of
+// a frame: each frame then goes whole to the slave that would finish it first, while enough
+// frames follow to keep the others busy, and the last few frames are dealt afresh in raster
+// order, in shares that let the slaves finish together (by speed and by the work each still
+// has queued). Whole frames reach the master complete, so the window grows by two frames
+// (the jobs each slave has queued) per member.
 //
 // Load balancing: a slave whose range is finished joins the range with the most work left per
 // slave (frame division) or splits it, taking the later part of its undivided frames
@@ -170,6 +175,10 @@ private:
     bool find_range(int slave);
     const Job *duplicate(int slave, double t);
     void divide(int r, int index, double when);
+    bool whole_frames(const Range &r, int index, const std::map<int, double> &speed) const;
+    std::map<int, double> seconds_until_free(const Range &r, int index, double when,
+                                             const std::map<int, double> &speed) const;
+    int window(const Range &range) const;
     void finish_together(const Range &r, int index, double when, double area,
                          const std::map<int, double> &speed,
                          std::map<int, double> &target) const;

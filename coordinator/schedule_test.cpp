@@ -114,9 +114,11 @@ static void two_slaves_without_fc(Schedule &s)
     s.add_slave(2, 200);
 }
 
-static void test_cheap_moves_balance_every_frame()
+// The last frames of a range without fc are divided so that the slaves finish together (the
+// tests below render two frames, both in that tail); earlier ones go whole to one slave.
+static void test_cheap_moves_balance_the_last_frames()
 {
-    Schedule s(make_tiles(kArea, 40), 10, Division::Frame);
+    Schedule s(make_tiles(kArea, 40), 2, Division::Frame);
     two_slaves_without_fc(s);
     s.plan(1);
     const Job *a = s.next_job(1, 0, true);
@@ -138,7 +140,7 @@ static void test_cheap_moves_deal_every_frame_afresh()
     // Without fc a frame's tiles go out as if it were the first frame at the slaves' current
     // speeds, whoever had them before: spread over the frame, not the tiles nearest a
     // slave's old share.
-    Schedule s(make_tiles(kArea, 40), 10, Division::Frame);
+    Schedule s(make_tiles(kArea, 40), 2, Division::Frame);
     two_slaves_without_fc(s);
     s.plan(1);
     Job a = *s.next_job(1, 0, true), b = *s.next_job(2, 0, true);
@@ -148,7 +150,7 @@ static void test_cheap_moves_deal_every_frame_afresh()
     deliver(s, b);
     std::vector<int> later = s.next_job(2, 1, true)->tiles;
 
-    Schedule fresh(make_tiles(kArea, 40), 10, Division::Frame);
+    Schedule fresh(make_tiles(kArea, 40), 2, Division::Frame);
     two_slaves_without_fc(fresh);
     fresh.note_speed(1, 3e5, 1.0);
     fresh.note_speed(2, 1e5, 1.0);
@@ -163,7 +165,7 @@ static void test_cheap_moves_let_slaves_finish_together()
     // Without fc a slave still busy with an earlier frame gets less of the next one: equal
     // speeds, but slave 2 has all of its frame-0 share (6 tiles of 1600 pixels, 0.096 s) to
     // go when slave 1 asks for frame 1. Both then finish frame 1 at 0.144 s: 9 tiles and 3.
-    Schedule s(make_tiles(kArea, 40), 10, Division::Frame);
+    Schedule s(make_tiles(kArea, 40), 2, Division::Frame);
     two_slaves_without_fc(s);
     s.plan(1);
     Job a = *s.next_job(1, 0, true);
@@ -173,6 +175,76 @@ static void test_cheap_moves_let_slaves_finish_together()
     deliver(s, a);
     const Job *c = s.next_job(1, 0, true);
     CHECK(c && c->index == 1 && c->tiles.size() == 9);
+}
+
+static void test_cheap_moves_deal_whole_frames()
+{
+    // Without fc every frame but the last few goes whole to one slave: one parse a frame, not
+    // one per slave. Slave 1 is three times as fast as slave 2; each keeps two jobs queued,
+    // and the faster one finishes its jobs first.
+    const int nframes = 20;
+    Schedule s(make_tiles(kArea, 40), nframes, Division::Frame);   // 12 tiles a frame
+    two_slaves_without_fc(s);
+    s.plan(1);
+    std::map<int, std::vector<Job>> queued;
+    std::map<int, int> parses;      // frame -> jobs of it
+    std::map<int, int> whole;       // slave -> whole frames rendered
+    double t = 0;
+    int steps = 0;
+    while (!s.finished() && steps++ < 1000) {
+        for (int slave : {1, 2})
+            while (queued[slave].size() < 2) {
+                const Job *j = s.next_job(slave, t, false);
+                if (!j)
+                    break;
+                queued[slave].push_back(*j);
+                parses[j->index]++;
+            }
+        // Slave 1 delivers three jobs for each of slave 2's.
+        int slave = (steps % 4 == 0 || queued[1].empty()) ? 2 : 1;
+        if (queued[slave].empty())
+            slave = 3 - slave;
+        if (queued[slave].empty())
+            break;
+        Job j = queued[slave].front();
+        queued[slave].erase(queued[slave].begin());
+        double seconds = (slave == 1 ? 1.0 : 3.0) * double(j.tiles.size()) / 12;
+        t += seconds / 2;
+        s.note_speed(slave, double(j.tiles.size()) * 1600, seconds);
+        if (j.tiles.size() == 12)
+            whole[slave]++;
+        deliver(s, j, nullptr, t);
+    }
+    CHECK(s.finished());
+    // Whole frames until the tail: at these speeds (3 : 1) the last four frames are divided.
+    for (int i = 0; i < nframes - 4; i++)
+        CHECK(parses[i] == 1);
+    int divided = 0;
+    for (int i = nframes - 4; i < nframes; i++)
+        divided += parses[i] > 1;
+    CHECK(divided >= 2);
+    // The faster slave took more whole frames than the slower.
+    CHECK(whole[1] > whole[2] && whole[2] > 0);
+}
+
+static void test_cheap_moves_window_fits_queued_whole_frames()
+{
+    // A slave that holds two whole frames does not stop the other at kWindow frames: whole
+    // frames reach the master complete. Stuck for good, it still stops it a little later.
+    Schedule s(make_tiles(kArea, 40), 40, Division::Frame);
+    two_slaves_without_fc(s);
+    s.plan(1);
+    const Job *a = s.next_job(2, 0, true);
+    const Job *b = s.next_job(2, 0, true);
+    CHECK(a && b && a->tiles.size() == 12 && b->tiles.size() == 12);
+    int fast_jobs = 0;
+    while (const Job *j = s.next_job(1, 0, true)) {
+        CHECK(j->tiles.size() == 12);
+        deliver(s, *j);
+        CHECK(++fast_jobs < 40);
+    }
+    CHECK(fast_jobs > Schedule::kWindow);
+    CHECK(fast_jobs <= Schedule::kWindow + 4);
 }
 
 static void test_more_slaves_than_tiles()
@@ -388,13 +460,14 @@ static void test_repair()
 // Random slaves of random speeds render, die, fail and join; the work always completes,
 // every missing cell stays covered, no cell is delivered twice without duplicates, and the
 // master holds few jobs and (frame division) few partial frames.
-static void test_simulation(Division div, unsigned seed)
+static void test_simulation(Division div, unsigned seed, bool cheap_moves = false)
 {
     std::mt19937 rng(seed);
     std::vector<Rect> tiles = div == Division::Sequence ? std::vector<Rect>{kArea}
                                                         : make_tiles(kArea, 40);
     const int nframes = 23;
     Schedule s(tiles, nframes, div);
+    s.set_cheap_moves(cheap_moves);
     std::map<int, double> speed;
     for (int slave = 1; slave <= 3; slave++) {
         s.add_slave(slave, 100 * (1 + slave % 2));
@@ -487,9 +560,11 @@ int main()
     test_sequence_ranges();
     test_frame_division_keeps_tiles();
     test_window_and_rebalance();
-    test_cheap_moves_balance_every_frame();
+    test_cheap_moves_balance_the_last_frames();
     test_cheap_moves_deal_every_frame_afresh();
     test_cheap_moves_let_slaves_finish_together();
+    test_cheap_moves_deal_whole_frames();
+    test_cheap_moves_window_fits_queued_whole_frames();
     test_more_slaves_than_tiles();
     test_resume_skips_done_frames();
     test_idle_slave_splits_range();
@@ -506,6 +581,8 @@ int main()
         test_simulation(Division::Sequence, seed);
         test_simulation(Division::Frame, seed);
         test_simulation(Division::Hybrid, seed);
+        test_simulation(Division::Frame, seed, true);
+        test_simulation(Division::Hybrid, seed, true);
     }
     if (failures) {
         fprintf(stderr, "schedule_test: %d check(s) failed\n", failures);
