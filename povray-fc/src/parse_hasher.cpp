@@ -18,7 +18,6 @@ namespace povrayfc {
 
 namespace {
 
-constexpr std::uint64_t kScopeSeed = 0x243f6a8885a308d3ULL;  // pi's fraction: any odd constant
 constexpr std::uint64_t kNullMarker = 0x6e756c6c6e756c6cULL;
 constexpr std::uint64_t kChildMarker = 0x6368696c64000000ULL;  // "child": a child's place in a shell
 
@@ -77,7 +76,8 @@ ParseHasher::ParseHasher() { BeginParse(); }
 
 void ParseHasher::BeginParse() {
     scopes_.clear();
-    scopes_.push_back(Scope{kScopeSeed, 0, kScopeSeed, false});
+    scopes_.push_back(Scope{kSeed, 0, kSeed, false});
+    inToken_ = false;
     slots_.clear();
 }
 
@@ -158,7 +158,8 @@ bool ParseHasher::MixFileContent(const char *path) {
 }
 
 void ParseHasher::PushScope(bool trackShell) {
-    if (enabled_) scopes_.push_back(Scope{kScopeSeed, 0, kScopeSeed, trackShell});
+    if (!enabled_) return;
+    scopes_.push_back(Scope{kSeed, 0, kSeed, trackShell});
 }
 
 std::uint64_t ParseHasher::PopChildScope(bool keep) {

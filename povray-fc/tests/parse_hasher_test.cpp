@@ -42,6 +42,46 @@ TEST(ParseHasher, SameInputSameHash) {
     EXPECT_EQ(a.Peek(), b.Peek());
 }
 
+// A token's digest (BeginToken ... EndToken) is a scope of its own mixed into the current
+// one: the same hash, effects and shell as PushScope ... PopScope(true), inside any scope.
+TEST(ParseHasher, TokenDigestEqualsAScopeOfItsOwn) {
+    ParseHasher viaScope, viaToken;
+    for (ParseHasher *h : {&viaScope, &viaToken}) {
+        h->MixToken(1);
+        h->PushScope(true);   // an item with a shell
+        h->MixToken(2);
+    }
+    auto token = [](ParseHasher &h, bool asScope, unsigned effects, double value,
+                    unsigned *effectsOut) -> std::uint64_t {
+        if (asScope) h.PushScope(); else h.BeginToken();
+        h.MixToken(40);
+        h.MixFloat(value);
+        h.NoteEffects(effects);
+        return asScope ? h.PopScope(true, effectsOut) : h.EndToken(effectsOut);
+    };
+    unsigned e1 = 0, e2 = 0;
+    EXPECT_EQ(token(viaScope, true, povrayfc::kEffectCrand, 0.5, &e1),
+              token(viaToken, false, povrayfc::kEffectCrand, 0.5, &e2));
+    EXPECT_EQ(e1, e2);
+    EXPECT_EQ(e1, unsigned(povrayfc::kEffectCrand));
+    EXPECT_EQ(token(viaScope, true, 0, 2.0, &e1), token(viaToken, false, 0, 2.0, &e2));
+    EXPECT_EQ(e2, 0u);
+    EXPECT_EQ(viaScope.Depth(), viaToken.Depth());
+    EXPECT_EQ(viaScope.Effects(), viaToken.Effects());
+    EXPECT_EQ(viaScope.Effects(), unsigned(povrayfc::kEffectCrand));
+    EXPECT_EQ(viaScope.Shell(), viaToken.Shell());
+    EXPECT_EQ(viaScope.Peek(), viaToken.Peek());
+    EXPECT_EQ(viaScope.PopScope(false), viaToken.PopScope(false));
+    EXPECT_EQ(viaScope.Peek(), viaToken.Peek());
+    // A token's value reaches the scope around it.
+    ParseHasher a, b;
+    a.PushScope();
+    b.PushScope();
+    token(a, false, 0, 0.25, &e1);
+    token(b, false, 0, 0.5, &e2);
+    EXPECT_NE(a.PopScope(false), b.PopScope(false));
+}
+
 TEST(ParseHasher, OrderAndLengthMatter) {
     EXPECT_NE(HashTokens({1, 2, 3}), HashTokens({3, 2, 1}));
     EXPECT_NE(HashTokens({1, 2}), HashTokens({2, 1}));

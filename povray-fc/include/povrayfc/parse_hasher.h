@@ -85,7 +85,7 @@ public:
     // --- mixing into the current (innermost) scope; order matters ---
     void MixWord(std::uint64_t word) {
         if (!enabled_) return;
-        Scope &scope = scopes_.back();
+        Scope &scope = Top();
         scope.hash = Mix(scope.hash, word);
         if (scope.trackShell) scope.shell = Mix(scope.shell, word);
     }
@@ -109,9 +109,9 @@ public:
 
     // --- inexact effects of the current scope ---
     void NoteEffects(unsigned effects) {
-        if (enabled_) scopes_.back().effects |= effects;
+        if (enabled_) Top().effects |= effects;
     }
-    unsigned Effects() const { return scopes_.back().effects; }
+    unsigned Effects() const { return Top().effects; }
 
     // --- scopes ---
     // trackShell: the scope also keeps a "shell" hash, of everything but the scopes of its
@@ -125,7 +125,7 @@ public:
     // attempt found no child), it is dropped.
     std::uint64_t PopChildScope(bool keep);
     // The shell of the innermost scope (0 when it keeps none).
-    std::uint64_t Shell() const { return scopes_.back().trackShell ? Finish(scopes_.back().shell) : 0; }
+    std::uint64_t Shell() const { return Top().trackShell ? Finish(Top().shell) : 0; }
     // Ends the innermost scope and returns its hash (and, with `effects`, its effects);
     // with mixIntoParent the hash is also mixed into the scope around it and the
     // effects go there too. The root scope is never popped: popping it returns its
@@ -134,8 +134,32 @@ public:
     // Ends the innermost scope and makes it the content of `slot`.
     void PopScopeIntoSlot(const void *slot);
     // The hash the current scope would return if it were popped now.
-    std::uint64_t Peek() const { return Finish(scopes_.back().hash); }
+    std::uint64_t Peek() const { return Finish(Top().hash); }
     std::size_t Depth() const { return scopes_.size(); }  // 1 = only the root
+
+    // --- one token's digest (the patched tokenizer, for every token it reads) ---
+    // BeginToken() ... EndToken(&effects) hashes what is mixed in between exactly as
+    // PushScope() ... PopScope(true, &effects) would, and returns the same hash. Tokens do
+    // not nest, so a scope kept beside the stack serves them and the stack is untouched: a
+    // push and a pop per token were a third of what hashing added to a parse. No scope may
+    // be pushed or popped in between.
+    void BeginToken() {
+        if (!enabled_) return;
+        token_ = Scope{kSeed, 0, kSeed, false};
+        inToken_ = true;
+    }
+    std::uint64_t EndToken(unsigned *effects) {
+        if (!enabled_) {
+            if (effects != nullptr) *effects = 0;
+            return 0;
+        }
+        inToken_ = false;
+        const std::uint64_t hash = Finish(token_.hash);
+        if (effects != nullptr) *effects = token_.effects;
+        MixWord(hash);
+        NoteEffects(token_.effects);
+        return hash;
+    }
 
     // --- content hashes (and effects) of identifier slots ---
     void SetSlotHash(const void *slot, std::uint64_t hash, unsigned effects = 0) {
@@ -170,7 +194,12 @@ private:
         std::uint64_t hash;
         unsigned effects;
     };
+    static constexpr std::uint64_t kSeed = 0x243f6a8885a308d3ULL;  // a fresh scope's hash (pi's fraction)
     std::vector<Scope> scopes_;
+    Scope token_{kSeed, 0, kSeed, false};   // BeginToken ... EndToken
+    bool inToken_ = false;                  // token_ is the innermost scope
+    Scope &Top() { return inToken_ ? token_ : scopes_.back(); }
+    const Scope &Top() const { return inToken_ ? token_ : scopes_.back(); }
     std::unordered_map<const void *, Slot> slots_;
     bool enabled_ = true;
 };
