@@ -38,6 +38,7 @@ bool SampleIsDirty(const StoredSample &s, const BlockRecord &record, const Chang
 
 bool BlockTracer::Begin(std::uint32_t serial, int left, int top, int right, int bottom) {
     const FramePlan &plan = *plan_;
+    endedActive_ = false;
     active_ = plan.mode != FramePlan::Mode::kIdle;
     if (!active_) return false;
     record_ = plan.mode == FramePlan::Mode::kRecord;
@@ -213,9 +214,13 @@ void BlockTracer::End() {
         changed_[1] = next_.bottom + 1;
         changed_[2] = next_.left - 1;
         changed_[3] = next_.top - 1;
+        changedPixels_.assign(tracedPixels_.size(), 0);
+        changedCount_ = 0;
         for (std::size_t i = 0; i < tracedPixels_.size(); ++i) {
             if (std::memcmp(&old_->pixels[i * 5], &next_.pixels[i * 5], 5 * sizeof(float)) == 0) continue;
             tracedPixels_[i] = 1;
+            changedPixels_[i] = 1;
+            ++changedCount_;
             const int x = next_.left + int(i % std::size_t(w)), y = next_.top + int(i / std::size_t(w));
             changed_[0] = std::min(changed_[0], x);
             changed_[1] = std::min(changed_[1], y);
@@ -227,6 +232,8 @@ void BlockTracer::End() {
         changed_[1] = next_.top;
         changed_[2] = next_.right;
         changed_[3] = next_.bottom;
+        changedPixels_.assign(tracedPixels_.size(), 1);
+        changedCount_ = tracedPixels_.size();
     }
     std::uint64_t traced = 0;
     for (std::size_t i = 0; i < tracedPixels_.size(); ++i) {
@@ -269,6 +276,7 @@ void BlockTracer::End() {
     old_ = nullptr;
     plan.store->Put(serial_, std::move(record));
     active_ = false;
+    endedActive_ = true;
 }
 
 bool BlockTracer::ChangedRect(int &left, int &top, int &right, int &bottom) const {

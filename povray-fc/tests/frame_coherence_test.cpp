@@ -148,16 +148,22 @@ Image RenderFull(const ToyScene &scene) {
 struct FcResult {
     Image image;
     std::uint64_t tracedSamples = 0;
+    std::uint64_t changedPixels = 0;   // ChangedCount over the traced blocks
+    std::uint64_t changedRectArea = 0; // the area of their ChangedRect
 };
 
 // Renders like the patched TraceTask: Begin per block, Reuse or trace each sample, End.
+// With `shown` (the front end's image, kept from frame to frame), only the pixels End()
+// reports changed are copied into it, as the patched trace task sends them.
 FcResult RenderFc(const ToyScene &scene, int frame, SceneEffects effects = {}, std::vector<std::string> inexact = {},
-                  int threads = 1) {
+                  int threads = 1, Image *shown = nullptr) {
     FrameCoherence &fc = FrameCoherence::Get();
     SceneSignature sig = Signature(scene);
     sig.inexactEffects = inexact;
     PublishSceneSignature(kScene, sig);
-    fc.BeginFrame(true, ToySetup(frame, threads), kScene, effects);
+    FrameSetup setup = ToySetup(frame, threads);
+    setup.frontEndKeepsImage = shown != nullptr;
+    fc.BeginFrame(true, setup, kScene, effects);
     FcResult r;
     r.image.assign(std::size_t(kW) * kH * 5, 0.0f);
     BlockTracer tracer(fc.Plan());
@@ -182,6 +188,18 @@ FcResult RenderFc(const ToyScene &scene, int frame, SceneEffects effects = {}, s
             for (int y = by; y <= bottom; ++y)
                 for (int x = bx; x <= right; ++x) tracer.SetPixel(x, y, &r.image[(std::size_t(y) * kW + x) * 5]);
             tracer.End();
+            // The patched trace task sends only the changed pixels when this says so.
+            EXPECT_EQ(tracer.SendOnlyChanged(), shown != nullptr);
+            int l, t, rr, b;
+            if (!tracer.ChangedRect(l, t, rr, b)) continue;
+            r.changedPixels += tracer.ChangedCount();
+            r.changedRectArea += std::uint64_t(rr - l + 1) * std::uint64_t(b - t + 1);
+            if (!shown) continue;
+            for (int y = t; y <= b; ++y)
+                for (int x = l; x <= rr; ++x)
+                    if (tracer.PixelChanged(x, y))
+                        std::memcpy(&(*shown)[(std::size_t(y) * kW + x) * 5], &r.image[(std::size_t(y) * kW + x) * 5],
+                                    5 * sizeof(float));
         }
     fc.EndFrame(0);
     return r;
@@ -224,6 +242,28 @@ TEST_F(FrameCoherenceRun, EveryFrameEqualsTheFullRenderAndTracesLess) {
     }
     // A box a few pixels wide moving: far fewer samples than full frames.
     EXPECT_LT(fcSamples, 11 * fullSamples / 3);
+}
+
+TEST_F(FrameCoherenceRun, TheChangedPixelsAloneKeepTheFrontEndsImageExact) {
+    // The front end keeps its image between frames and is sent only the pixels End() marks
+    // changed: it must hold every frame's full render.
+    Image shown(std::size_t(kW) * kH * 5, -1.0f);
+    std::uint64_t changed = 0, rectArea = 0;
+    for (int f = 0; f < 12; ++f) {
+        const ToyScene scene = Frame(1.0 + 0.75 * f);
+        const FcResult fc = RenderFc(scene, f + 1, {}, {}, 1, &shown);
+        ASSERT_EQ(std::memcmp(RenderFull(scene).data(), shown.data(), shown.size() * sizeof(float)), 0)
+            << "frame " << f + 1;
+        if (f == 0) {
+            EXPECT_EQ(fc.changedPixels, std::uint64_t(kW) * kH);  // nothing to compare with
+            continue;
+        }
+        EXPECT_LE(fc.changedPixels, fc.changedRectArea);
+        changed += fc.changedPixels;
+        rectArea += fc.changedRectArea;
+    }
+    EXPECT_GT(changed, 0u);
+    EXPECT_LE(changed, rectArea);
 }
 
 TEST_F(FrameCoherenceRun, UnchangedFrameReusesEveryBlock) {

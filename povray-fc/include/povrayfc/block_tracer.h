@@ -52,6 +52,16 @@ class BlockTracer {
     // image (StoredBlockIsShown): the box around the pixels whose colour changed, or the
     // whole block when there was nothing to compare with. False: nothing to send.
     bool ChangedRect(int &left, int &top, int &right, int &bottom) const;
+    // After End(): the block was under frame coherence and the front end keeps its image, so
+    // it needs only the pixels ChangedRect and PixelChanged report (End() ends Active()).
+    bool SendOnlyChanged() const { return endedActive_ && plan_->skipStoredBlocks; }
+    // After End(), with ChangedRect: how many pixels changed colour, and whether (x, y) did.
+    // Where they are few and scattered, sending them one by one costs less than their
+    // rectangle (a reflection and a shadow of a moving object change pixels far apart).
+    std::size_t ChangedCount() const { return changedCount_; }
+    bool PixelChanged(int x, int y) const {
+        return changedPixels_[std::size_t(y - next_.top) * std::size_t(next_.Width()) + std::size_t(x - next_.left)] != 0;
+    }
 
     // The current block is under frame coherence (false: fc is idle this frame, and the
     // caller traces as POV-Ray always does).
@@ -64,6 +74,7 @@ class BlockTracer {
 
     const FramePlan *plan_;
     bool active_ = false;   // this block is under fc (mode != kIdle)
+    bool endedActive_ = false;  // End() ended a block under fc (SendOnlyChanged)
     bool record_ = false;   // mode kRecord: samples and segments are kept
     std::uint32_t serial_ = 0;
     BlockRecord *old_ = nullptr;             // the stored record, when it may be reused from
@@ -76,6 +87,8 @@ class BlockTracer {
     std::vector<std::uint8_t> tracedPixels_; // per pixel of the block
     std::uint64_t tracedSamples_ = 0, reusedSamples_ = 0;
     int changed_[4] = {0, 0, -1, -1};       // left, top, right, bottom of the changed pixels
+    std::vector<std::uint8_t> changedPixels_;   // per pixel of the block: its colour changed
+    std::size_t changedCount_ = 0;
     SampleRecorder recorder_;
 };
 
