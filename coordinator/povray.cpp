@@ -262,6 +262,14 @@ bool set_frames(SceneInfo &info, const ResolvedOptions &ini, std::string &err)
     // last; a subset bound in (0, 1) is a fraction of the animation.
     int initial = std::max(int(get("Initial_Frame", 1)), 0);
     int final = std::max(int(get("Final_Frame", 1)), initial) + (cyclic ? 1 : 0);
+    // The first frame too, not the number in the console's first output name: one newton-table
+    // run on a loaded machine started at frame 2 and rendered 44 of 45 frames as a success.
+    int start = initial;
+    if (ini.count("Subset_Start_Frame")) {
+        float p = std::max(float(get("Subset_Start_Frame", 0)), 0.0f);
+        start = std::max((p == 0 || p >= 1) ? int(p) : int(float(final - initial + 1) * p), initial);
+    }
+    info.first_frame = start;
     int end = final - (cyclic ? 1 : 0);
     if (ini.count("Subset_End_Frame")) {
         float p = std::max(float(get("Subset_End_Frame", 0)), 0.0f);

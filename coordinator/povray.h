@@ -67,11 +67,12 @@ bool probe_resolved_options(const std::string &renderer, const std::string &form
 // (or a still's single frame). False with err when the name does not fit.
 bool split_output_name(SceneInfo &info, const std::string &ext, std::string &err);
 
-// The frames of an animation: from info.first_frame to the subset's end, as
-// AnimationProcessing computes it from the resolved options (Subset_End_Frame as a frame or a
-// fraction of the animation, Final_Frame, Cyclic_Animation), every Frame_Step. POV-Ray's
-// console may not print "Rendering frame k of n" before a short run ends, so the count is
-// not read from there.
+// The frames of an animation: from the subset's start to its end, as AnimationProcessing
+// computes them from the resolved options (Initial_Frame, Subset_Start_Frame and
+// Subset_End_Frame as frames or fractions of the animation, Final_Frame, Cyclic_Animation),
+// every Frame_Step; sets info.first_frame. POV-Ray's console may not print "Rendering frame
+// k of n" before a short run ends, and a run once started at frame 2 from the number in its
+// first output name, so neither is read from there.
 bool set_frames(SceneInfo &info, const ResolvedOptions &ini, std::string &err);
 
 // Run argv to completion (or timeout) in cwd, collecting its output lines and wait status.
