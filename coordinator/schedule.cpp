@@ -207,12 +207,37 @@ int Schedule::oldest_unfinished(Range &range) const
     return range.oldest;
 }
 
+// Speeds of r's members; a slave not measured yet counts as fast as the average measured one.
+std::map<int, double> Schedule::member_speeds(const Range &r) const
+{
+    double measured = 0;
+    int nmeasured = 0;
+    for (int s : r.members) {
+        auto it = speed_.find(s);
+        if (it != speed_.end() && it->second > 0) {
+            measured += it->second;
+            nmeasured++;
+        }
+    }
+    double typical = nmeasured > 0 ? measured / nmeasured : 1.0;
+    std::map<int, double> speed;
+    for (int s : r.members) {
+        auto it = speed_.find(s);
+        speed[s] = it != speed_.end() && it->second > 0 ? it->second : typical;
+    }
+    return speed;
+}
+
 int Schedule::window(const Range &range) const
 {
-    // Whole frames reach the master complete (it holds none of them), but every member has up
-    // to two queued: the window must not stop a fast member while the slowest renders its two.
-    return cheap_moves_ && range.members.size() > 1 ? kWindow + 2 * int(range.members.size())
-                                                     : kWindow;
+    // A frame that goes whole reaches the master complete (it holds none of them), but every
+    // member has up to two queued: the window must not stop a fast member while the slowest
+    // renders its two. Divided frames (the last ones) stay within kWindow: the master holds
+    // them until their last tile.
+    if (cheap_moves_ && range.members.size() > 1 && range.frontier <= range.hi &&
+        whole_frames(range, range.frontier, member_speeds(range)))
+        return kWindow + 2 * int(range.members.size());
+    return kWindow;
 }
 
 long Schedule::range_work(const Range &range) const
@@ -243,24 +268,10 @@ void Schedule::divide(int ri, int index, double when)
             todo.push_back(t);
     if (todo.empty())
         return;
-    // A slave not measured yet counts as fast as the average measured one.
-    double measured = 0;
-    int nmeasured = 0;
-    for (int s : m) {
-        auto it = speed_.find(s);
-        if (it != speed_.end() && it->second > 0) {
-            measured += it->second;
-            nmeasured++;
-        }
-    }
-    double typical = nmeasured > 0 ? measured / nmeasured : 1.0;
+    const std::map<int, double> speed = member_speeds(r);
     double total_speed = 0;
-    std::map<int, double> speed;
-    for (int s : m) {
-        auto it = speed_.find(s);
-        speed[s] = it != speed_.end() && it->second > 0 ? it->second : typical;
-        total_speed += speed[s];
-    }
+    for (auto &kv : speed)
+        total_speed += kv.second;
     double area = 0;
     for (int t : todo)
         area += tiles_[size_t(t)].area();
@@ -268,7 +279,7 @@ void Schedule::divide(int ri, int index, double when)
         const std::map<int, double> free_at = seconds_until_free(r, index, when, speed);
         int first = m[0];
         for (int s : m)
-            if (free_at.at(s) + area / speed[s] < free_at.at(first) + area / speed[first])
+            if (free_at.at(s) + area / speed.at(s) < free_at.at(first) + area / speed.at(first))
                 first = s;
         r.reserved[index][first] = todo;
         r.lagging = false;
@@ -278,7 +289,7 @@ void Schedule::divide(int ri, int index, double when)
     std::map<int, std::vector<int>> share;
     for (int s : m) {
         load[s] = 0;
-        target[s] = area * speed[s] / total_speed;
+        target[s] = area * speed.at(s) / total_speed;
     }
     if (cheap_moves_)
         finish_together(r, index, when, area, speed, target);

@@ -178,6 +178,7 @@ private:
     bool whole_frames(const Range &r, int index, const std::map<int, double> &speed) const;
     std::map<int, double> seconds_until_free(const Range &r, int index, double when,
                                              const std::map<int, double> &speed) const;
+    std::map<int, double> member_speeds(const Range &r) const;
     int window(const Range &range) const;
     void finish_together(const Range &r, int index, double when, double area,
                          const std::map<int, double> &speed,

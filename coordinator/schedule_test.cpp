@@ -227,6 +227,38 @@ static void test_cheap_moves_deal_whole_frames()
     CHECK(whole[1] > whole[2] && whole[2] > 0);
 }
 
+static void test_cheap_moves_divided_frames_keep_the_window()
+{
+    // Divided frames (the last ones) are held by the master until their last tile: while one
+    // slave keeps its share of the oldest, the others divide at most kWindow frames (32
+    // slaves of master-scale on 24 frames once held all 24).
+    const int nframes = 12;
+    Schedule s(make_tiles(kArea, 20), nframes, Division::Frame);     // 48 tiles
+    s.set_cheap_moves(true);
+    for (int slave = 1; slave <= 16; slave++)
+        s.add_slave(slave, 100 * slave);
+    s.plan(1);
+    CHECK(s.next_job(16, 0, false) != nullptr);     // slave 16 never returns its first share
+    for (int step = 0; step < 1000; step++) {
+        bool any = false;
+        for (int slave = 1; slave <= 15; slave++)
+            if (const Job *j = s.next_job(slave, 0, false)) {
+                deliver(s, *j);
+                any = true;
+            }
+        if (!any)
+            break;
+    }
+    int partial = 0;
+    for (int i = 0; i < nframes; i++) {
+        bool some = false;
+        for (int t = 0; t < s.tiles(); t++)
+            some = some || s.done(i, t);
+        partial += some && !s.frame_done(i);
+    }
+    CHECK(partial >= 1 && partial <= Schedule::kWindow);
+}
+
 static void test_cheap_moves_window_fits_queued_whole_frames()
 {
     // A slave that holds two whole frames does not stop the other at kWindow frames: whole
@@ -595,6 +627,7 @@ int main()
     test_cheap_moves_let_slaves_finish_together();
     test_cheap_moves_deal_whole_frames();
     test_cheap_moves_window_fits_queued_whole_frames();
+    test_cheap_moves_divided_frames_keep_the_window();
     test_more_slaves_than_tiles();
     test_resume_skips_done_frames();
     test_idle_slave_splits_range();
