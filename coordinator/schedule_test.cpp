@@ -37,6 +37,19 @@ static std::vector<int> deliver(Schedule &s, const Job &j, std::vector<Job> *can
     return fresh;
 }
 
+// Frames some but not all of whose tiles are done: what the master holds in memory.
+static int partial_frames(const Schedule &s)
+{
+    int partial = 0;
+    for (int i = 0; i < s.frames(); i++) {
+        bool some = false;
+        for (int t = 0; t < s.tiles(); t++)
+            some = some || s.done(i, t);
+        partial += some && !s.frame_done(i);
+    }
+    return partial;
+}
+
 static void test_sequence_ranges()
 {
     Schedule s({kArea}, 10, Division::Sequence);
@@ -249,13 +262,7 @@ static void test_cheap_moves_divided_frames_keep_the_window()
         if (!any)
             break;
     }
-    int partial = 0;
-    for (int i = 0; i < nframes; i++) {
-        bool some = false;
-        for (int t = 0; t < s.tiles(); t++)
-            some = some || s.done(i, t);
-        partial += some && !s.frame_done(i);
-    }
+    int partial = partial_frames(s);
     CHECK(partial >= 1 && partial <= Schedule::kWindow);
 }
 
@@ -549,14 +556,7 @@ static void test_simulation(Division div, unsigned seed, bool cheap_moves = fals
         s.note_speed(slave, double(j.tiles.size()) * 1600, 1.0 / speed[slave]);
         for (int t : deliver(s, j))
             delivered[{j.index, t}]++;
-        int partial = 0;
-        for (int i = 0; i < nframes; i++) {
-            bool some = false;
-            for (int t = 0; t < s.tiles(); t++)
-                some = some || s.done(i, t);
-            partial += some && !s.frame_done(i);
-        }
-        max_partial = std::max(max_partial, partial);
+        max_partial = std::max(max_partial, partial_frames(s));
     }
     CHECK(s.finished());
     CHECK(int(delivered.size()) == nframes * s.tiles());
