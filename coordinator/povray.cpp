@@ -174,7 +174,7 @@ bool split_output_name(SceneInfo &info, const std::string &ext, std::string &err
     info.frames.clear();
     if (info.animated) {
         info.digits = frame_digits(info.final_frame, info.cyclic);
-        // The first subset frame is encoded in the name; its digits end the name.
+        // The first frame's number ends the name (the frames themselves come from set_frames).
         size_t nd = 0;
         while (nd < name.size() && isdigit((unsigned char)name[name.size() - 1 - nd]))
             nd++;
@@ -182,8 +182,6 @@ bool split_output_name(SceneInfo &info, const std::string &ext, std::string &err
             err = "cannot find the frame number in POV-Ray's output name " + info.output_name;
             return false;
         }
-        std::string num = name.substr(name.size() - size_t(info.digits));
-        info.first_frame = atoi(num.c_str());
         info.stem = name.substr(0, name.size() - size_t(info.digits));
     } else {
         info.digits = 0;

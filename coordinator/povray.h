@@ -26,7 +26,7 @@ struct SceneInfo {
     bool animated = false;
     int initial_frame = 0, final_frame = 0, frame_step = 1;
     bool cyclic = false;
-    int first_frame = 0;            // first frame of the subset (from the output name)
+    int first_frame = 0;            // first frame of the subset (set_frames)
     std::vector<int> frames;        // frames to render (subset, step applied); {0} for a still
     std::string output_name;        // POV-Ray's output file name for the first frame
     std::string stem;               // output_name without frame number and extension
@@ -63,8 +63,8 @@ bool probe_resolved_options(const std::string &renderer, const std::string &form
                             const std::string &tmpdir, double timeout, ResolvedOptions &out,
                             std::string &err);
 
-// From the first frame's output name and the format's extension: stem, digits and first frame
-// (or a still's single frame). False with err when the name does not fit.
+// From the first frame's output name and the format's extension: stem and digits (or a
+// still's single frame). False with err when the name does not fit.
 bool split_output_name(SceneInfo &info, const std::string &ext, std::string &err);
 
 // The frames of an animation: from the subset's start to its end, as AnimationProcessing
