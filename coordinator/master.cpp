@@ -361,6 +361,9 @@ void Master::write_complete_frames(bool wait)
     if (unwritten_.empty() ||
         (!wait && unwritten_.size() <= kFramesWhileLoading && image_io_loading()))
         return;
+    // Frames kept during the load completed in any order (whole frames on several slaves):
+    // they go out in frame order.
+    std::sort(unwritten_.begin(), unwritten_.end());
     size_t k = 0;
     while (k < unwritten_.size() && !write_failed_ && !quit_early_)
         if (!frame_finished(unwritten_[k++]))
