@@ -338,9 +338,12 @@ def test_frames_complete_in_order_while_rendering(coordinator, coordinator_refer
     assert s["max_frames_held"] <= 6, s["max_frames_held"]
     finished = [f["finished_at"] for f in s["frames"]]
     assert finished[0] < s["elapsed"] / 3, finished
-    # Nearly in order: no frame is finished long after the frames that follow it.
-    for k in range(len(finished) - 3):
-        assert finished[k] <= finished[k + 3], finished
+    # Nearly in order: no frame is finished after the frames beyond the scheduler's window
+    # (Schedule::kWindow, 4, plus two whole frames queued per slave: a slave slowed by a busy
+    # core may hold a frame while the other renders the next eight).
+    lag = 4 + 2 * 2 + 1
+    for k in range(len(finished) - lag):
+        assert finished[k] <= finished[k + lag], finished
 
 
 def renderer_wrapper(tmp_path, failures):
