@@ -12,6 +12,9 @@ namespace {
 
 double Dot(const Vec3 &a, const Vec3 &b) { return a.x * b.x + a.y * b.y + a.z * b.z; }
 double Norm(const Vec3 &a) { return std::sqrt(Dot(a, a)); }
+Vec3 Cross(const Vec3 &a, const Vec3 &b) {
+    return Vec3{a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x};
+}
 double MaxAbs(const Vec3 &a) { return std::max(std::fabs(a.x), std::max(std::fabs(a.y), std::fabs(a.z))); }
 Vec3 Origin(const Segment &s) { return Vec3{s.origin[0], s.origin[1], s.origin[2]}; }
 Vec3 Direction(const Segment &s) { return Vec3{s.direction[0], s.direction[1], s.direction[2]}; }
@@ -170,6 +173,56 @@ BlockFans GrowFans(const BlockFans &old, const Segment *segments, std::vector<st
     return fans;
 }
 
+namespace {
+
+// The smallest angle between the unit vector `axis` and the directions from the apex to
+// the points of the segment [a, b] (both relative to the apex, neither at it), less a
+// hair for rounding. Seen from the apex the segment sweeps a great-circle arc; the
+// nearest point of the arc to `axis` is either the axis projected into the arc's plane,
+// when that falls inside the arc, or one of its ends.
+double SmallestAngleToSegment(const Vec3 &axis, const Vec3 &a, const Vec3 &b) {
+    const Vec3 ua = (1.0 / Norm(a)) * a, ub = (1.0 / Norm(b)) * b;
+    double phi = std::min(std::acos(std::clamp(Dot(axis, ua), -1.0, 1.0)),
+                          std::acos(std::clamp(Dot(axis, ub), -1.0, 1.0)));
+    const Vec3 n = Cross(ua, ub);
+    const double sn = Norm(n);
+    if (sn < 1e-6) {
+        // Nearly collinear with the apex: on its one side the arc is shorter than
+        // asin(sn), and the ends bound it to within that; through the apex, no bound.
+        return Dot(ua, ub) > 0 ? phi - std::asin(sn) - 1e-9 : 0.0;
+    }
+    const Vec3 un = (1.0 / sn) * n;
+    const Vec3 w = axis - Dot(axis, un) * un;  // the axis in the arc's plane
+    if (Dot(Cross(ua, w), un) >= 0 && Dot(Cross(w, ub), un) >= 0)
+        phi = std::min(phi, std::acos(std::clamp(Norm(w), -1.0, 1.0)));
+    return phi - 1e-9;
+}
+
+// The cone against a sphere (centre c, radius) or, when `segmentEnd` is given, against
+// the capsule around [c, *segmentEnd]: a point within `radius` of a point P, seen from
+// the apex, is at most asin(radius / |P - apex|) off the direction to P.
+bool ConeMayReach(const SegmentFan &fan, const Vec3 &c, const Vec3 *segmentEnd, double radius) {
+    const Vec3 v = c - fan.apex;
+    double dist = Norm(v), phi;
+    if (segmentEnd) {
+        const Vec3 w = *segmentEnd - fan.apex, ab = w - v;
+        const double len2 = Dot(ab, ab);
+        const double t = len2 > 0.0 ? std::clamp(-Dot(v, ab) / len2, 0.0, 1.0) : 0.0;
+        dist = Norm(v + t * ab) * (1.0 - 1e-12);  // the nearest point of the axis
+        if (dist <= radius) return true;
+        if (dist - radius > fan.reach) return false;
+        phi = SmallestAngleToSegment(fan.axis, v, w);
+    } else {
+        if (dist <= radius) return true;
+        if (dist - radius > fan.reach) return false;
+        phi = std::acos(std::clamp(Dot(v, fan.axis) / dist, -1.0, 1.0));
+    }
+    const double beta = std::asin(std::min(1.0, radius / dist));
+    return phi <= fan.halfAngle + beta + 1e-9;
+}
+
+}  // namespace
+
 bool FanMayMeet(const SegmentFan &fan, const Hull &hull) {
     if (fan.reach < 0) return false;  // no segments
     const Box &b = hull.box;
@@ -181,15 +234,12 @@ bool FanMayMeet(const SegmentFan &fan, const Hull &hull) {
     // the apex itself, or points within `reach` of it.
     const double spread = 2.0 * fan.originReach;
     const double margin = 0x1p-19 * (MaxAbs(fan.apex) + MaxAbs(fan.apex - c) + spread + h) + 1e-30;
-    const double radius = Norm(e) + fan.slack + 2.0 * margin;  // 2 > sqrt(3): max norm to length
-    const Vec3 v = c - fan.apex;
-    const double dist = Norm(v);
-    if (dist <= radius) return true;
-    if (dist - radius > fan.reach) return false;
-    const double phi = std::acos(std::clamp(Dot(v, fan.axis) / dist, -1.0, 1.0));
-    const double theta = fan.halfAngle;
-    const double beta = std::asin(std::min(1.0, radius / dist));
-    return phi <= theta + beta + 1e-9;
+    const double widen = fan.slack + 2.0 * margin;  // 2 > sqrt(3): max norm to length
+    if (!ConeMayReach(fan, c, nullptr, Norm(e) + widen)) return false;
+    // A slanted cylinder's box (a string, a rod) is far wider than the cylinder: its
+    // capsule keeps the blocks that only see past it from testing every segment.
+    if (!hull.hasCapsule) return true;
+    return ConeMayReach(fan, hull.capsule.a, &hull.capsule.b, hull.capsule.radius + widen);
 }
 
 }  // namespace povrayfc

@@ -11,6 +11,8 @@ using namespace povrayfc;
 
 namespace {
 
+double Norm3(Vec3 v) { return std::sqrt(v.x * v.x + v.y * v.y + v.z * v.z); }
+
 Vec3 Normalised(Vec3 v) {
     const double n = std::sqrt(v.x * v.x + v.y * v.y + v.z * v.z);
     return (1.0 / n) * v;
@@ -97,6 +99,90 @@ TEST(SegmentFans, ConeNeverMissesAHullItsSegmentsMeet) {
     }
     EXPECT_GT(checked, 10000);
     EXPECT_GT(fanRejects, 10000);  // the cones do reject most hulls
+}
+
+// Slanted thin cylinders (strings, rods) and spheres, as capsule hulls: the cone's test
+// against the capsule must hold every member that meets it, and reject blocks that only
+// the capsule's box reaches.
+TEST(SegmentFans, ConeNeverMissesACapsuleItsSegmentsMeet) {
+    std::mt19937_64 rng(29);
+    std::uniform_real_distribution<double> pos(-15, 15), unit(-1, 1), radius(0.01, 1.5);
+    int checked = 0, boxOnly = 0, capsuleRejects = 0;
+    for (int block = 0; block < 200; ++block) {
+        RecordedBlock b = BlockRays(rng);
+        const BlockFans fans = BuildFans(b.segments.data(), b.fanOf, b.apexes);
+        for (int k = 0; k < 200; ++k) {
+            const Vec3 a{pos(rng), pos(rng) * 0.5 + 5, pos(rng)};
+            // Every fifth a sphere (a capsule of no length), the others up to 12 long.
+            const Vec3 axis = k % 5 == 0 ? Vec3{0, 0, 0} : 6.0 * Vec3{unit(rng), unit(rng), unit(rng)};
+            const Capsule c{a, a + axis, k % 2 ? 0.03 : radius(rng)};
+            Box box;
+            box.Grow(c.a - Vec3{c.radius, c.radius, c.radius});
+            box.Grow(c.b + Vec3{c.radius, c.radius, c.radius});
+            box.Grow(c.a + Vec3{c.radius, c.radius, c.radius});
+            box.Grow(c.b - Vec3{c.radius, c.radius, c.radius});
+            const Hull capsule = MakeHull(box, c), boxed = MakeHull(box);
+            for (std::size_t f = 0; f < fans.fans.size(); ++f) {
+                const bool cone = FanMayMeet(fans.fans[f], capsule);
+                const bool coneOfBox = FanMayMeet(fans.fans[f], boxed);
+                // Invariant: the capsule only narrows the box's test.
+                ASSERT_TRUE(coneOfBox || !cone) << block << " " << k << " " << f;
+                boxOnly += coneOfBox;
+                capsuleRejects += coneOfBox && !cone;
+                for (std::size_t i = 0; i < b.segments.size(); ++i) {
+                    if (b.fanOf[i] != f || !MayMeet(b.segments[i], capsule)) continue;
+                    ++checked;
+                    ASSERT_TRUE(cone) << "block " << block << " capsule " << k << " fan " << f << " segment " << i;
+                }
+            }
+        }
+    }
+    EXPECT_GT(checked, 5000);
+    EXPECT_GT(capsuleRejects, boxOnly / 10);  // the capsule rejects many that the box keeps
+}
+
+// Grazing cases: segments from the apex aimed at a capsule's surface, just inside and
+// just outside, from all sides and along its axis.
+TEST(SegmentFans, ConeHoldsRaysThatGrazeACapsule) {
+    std::mt19937_64 rng(31);
+    std::uniform_real_distribution<double> unit(-1, 1), t01(0, 1);
+    int grazing = 0;
+    for (int k = 0; k < 20000; ++k) {
+        const Vec3 apex{10 * unit(rng), 10 * unit(rng), 10 * unit(rng)};
+        const Vec3 a{5 * unit(rng), 5 * unit(rng), 5 * unit(rng)};
+        const Vec3 axis = (k % 3 == 0) ? Vec3{0, 0, 0} : 4.0 * Vec3{unit(rng), unit(rng), unit(rng)};
+        const Capsule c{a, a + axis, 0.001 + 0.5 * t01(rng)};
+        // A point on the capsule's surface: a point of its axis plus a radius in a
+        // random direction.
+        const Vec3 p = a + t01(rng) * axis;
+        const Vec3 r = Normalised(Vec3{unit(rng), unit(rng), unit(rng)});
+        const Vec3 target = p + (c.radius * (1.0 - 1e-7)) * r;
+        if (Norm3(target - apex) <= c.radius) continue;
+        Box box;
+        for (double s : {-1.0, 1.0}) {
+            box.Grow(c.a + s * Vec3{c.radius, c.radius, c.radius});
+            box.Grow(c.b + s * Vec3{c.radius, c.radius, c.radius});
+        }
+        const Hull hull = MakeHull(box, c);
+        // One segment from the apex to the target and on: a cone of it alone.
+        const Vec3 d = Normalised(target - apex);
+        Segment seg;
+        for (int i = 0; i < 3; ++i) {
+            seg.origin[i] = float(apex[i]);
+            seg.direction[i] = float(d[i]);
+        }
+        seg.length = float(1.5 * Norm3(target - apex));
+        std::vector<std::uint8_t> fanOf{0};
+        FanApexes apexes;
+        const double o[3] = {seg.origin[0], seg.origin[1], seg.origin[2]};
+        apexes.OriginFan(o);
+        const BlockFans fans = BuildFans(&seg, fanOf, apexes);
+        ASSERT_EQ(fans.fans.size(), 1u);
+        if (!MayMeet(seg, hull)) continue;
+        ++grazing;
+        ASSERT_TRUE(FanMayMeet(fans.fans[0], hull)) << k;
+    }
+    EXPECT_GT(grazing, 15000);
 }
 
 TEST(SegmentFans, GrowingAFanKeepsHoldingItsSegments) {
