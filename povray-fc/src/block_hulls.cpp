@@ -41,7 +41,7 @@ struct LooseReach {
 }  // namespace
 
 bool BlockHulls::Any() const {
-    if (loose) return true;
+    if (loose || unbounded) return true;
     for (Mask m : fan)
         if (m) return true;
     return false;
@@ -50,8 +50,7 @@ bool BlockHulls::Any() const {
 bool BlockHulls::SegmentMayMeet(const Segment &s, std::uint8_t fanNumber, const ChangeIndex &changes) const {
     Mask mask;
     if (fanNumber == BlockFans::kLoose) {
-        if (!InLooseBox(s)) return changes.MayMeet(s);  // a ray to infinity: no box holds it
-        mask = loose;
+        mask = InLooseBox(s) ? loose : unbounded;
     } else {
         mask = fan[fanNumber];
     }
@@ -75,29 +74,35 @@ BlockHulls FindBlockHulls(const BlockRecord &record, const ChangeIndex &changes)
     bool anyReach = false;
     for (std::size_t f = 0; f < fans.size(); ++f) anyReach |= fanReaches[f] = FanMayMeet(fans[f], everything);
     const bool looseReaches = looseReach.Meets(changes.Bounds());
-    if (!anyReach && !looseReaches) return result;
+    const bool unboundedReaches = FanMayMeet(record.fans.unbounded, everything);
+    if (!anyReach && !looseReaches && !unboundedReaches) return result;
 
     auto everythingReachable = [&] {
         result.all = true;
         for (std::size_t f = 0; f < fans.size(); ++f) result.fan[f] = fanReaches[f] ? 1 : 0;
         result.loose = looseReaches ? 1 : 0;
+        result.unbounded = unboundedReaches ? 1 : 0;
         return result;
     };
     if (changes.HullCount() > BlockHulls::kMaxHullsToSort) return everythingReachable();
 
     const std::vector<Hull> &hulls = changes.Hulls();
     for (std::size_t h = 0; h < hulls.size(); ++h) {
-        BlockHulls::Mask reachedBy = 0;  // bit f: fan f; bit kMaxFans: the loose box
+        // bit f: fan f; bit kMaxFans: the loose box; bit kMaxFans + 1: the unbounded cone
+        BlockHulls::Mask reachedBy = 0;
+        const BlockHulls::Mask looseBit = BlockHulls::Mask(1) << BlockFans::kMaxFans, unboundedBit = looseBit << 1;
         for (std::size_t f = 0; f < fans.size(); ++f)
             if (fanReaches[f] && FanMayMeet(fans[f], hulls[h])) reachedBy |= BlockHulls::Mask(1) << f;
-        if (looseReaches && looseReach.Meets(hulls[h].box)) reachedBy |= BlockHulls::Mask(1) << BlockFans::kMaxFans;
+        if (looseReaches && looseReach.Meets(hulls[h].box)) reachedBy |= looseBit;
+        if (unboundedReaches && FanMayMeet(record.fans.unbounded, hulls[h])) reachedBy |= unboundedBit;
         if (!reachedBy) continue;
         if (result.count == BlockHulls::kMaxLocal) return everythingReachable();
         const BlockHulls::Mask bit = BlockHulls::Mask(1) << result.count;
         result.local[result.count++] = std::uint32_t(h);
         for (std::size_t f = 0; f < fans.size(); ++f)
             if (reachedBy & (BlockHulls::Mask(1) << f)) result.fan[f] |= bit;
-        if (reachedBy & (BlockHulls::Mask(1) << BlockFans::kMaxFans)) result.loose |= bit;
+        if (reachedBy & looseBit) result.loose |= bit;
+        if (reachedBy & unboundedBit) result.unbounded |= bit;
     }
     return result;
 }

@@ -86,7 +86,7 @@ bool BlockTracer::Begin(std::uint32_t serial, int left, int top, int right, int 
     }
     const BlockHulls reach = FindBlockHulls(*old_, *plan.changes);
     bool anyDirty = false;
-    if (reach.Any() || old_->fans.looseUnbounded || old_->hasEverything) {
+    if (reach.Any() || old_->hasEverything) {
         oldDirty_.resize(n);
         for (std::size_t i = 0; i < n; ++i) {
             oldDirty_[i] = SampleIsDirty(old_->samples[i], *old_, *plan.changes, reach);

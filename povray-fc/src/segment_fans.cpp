@@ -88,10 +88,51 @@ SegmentFan Cone(const Segment *segments, const std::vector<std::uint32_t> &membe
     return fan;
 }
 
-// A loose segment joins the loose box, or marks the block as having unbounded ones.
+// Widens `fan` (reach < 0: empty) to hold an unbounded loose segment: its origin within
+// the slack of the apex, its direction within the half angle of the axis. An empty fan
+// takes the first segment's origin as apex and direction as axis; BuildFans re-centres
+// both once it has seen all the segments.
+void GrowUnbounded(SegmentFan &fan, const Segment &s) {
+    const Vec3 o = Origin(s), d = Direction(s);
+    const Vec3 u = (1.0 / Norm(d)) * d;
+    if (fan.reach < 0) {
+        fan.apex = o;
+        fan.axis = u;
+        fan.halfAngle = 0.0;
+        fan.reach = std::numeric_limits<double>::infinity();
+    }
+    const double spread = Norm(o - fan.apex) * (1.0 + 1e-9);
+    fan.slack = std::max(fan.slack, spread + 1e-12 * (1.0 + MaxAbs(fan.apex)));
+    fan.originReach = std::max(fan.originReach, spread);
+    const double angle = std::acos(std::clamp(Dot(u, fan.axis), -1.0, 1.0));
+    fan.halfAngle = std::min(M_PI, std::max(fan.halfAngle, angle + 1e-9));
+}
+
+// The cone around unbounded loose segments: apex at the centre of their origins, axis
+// along their mean direction (narrower than growing from the first segment).
+SegmentFan UnboundedCone(const Segment *segments, const std::vector<std::uint32_t> &members) {
+    SegmentFan fan = BlockFans::NoSegments();
+    if (members.empty()) return fan;
+    Box origins;
+    Vec3 sum{0, 0, 0};
+    for (std::uint32_t i : members) {
+        origins.Grow(Origin(segments[i]));
+        const Vec3 d = Direction(segments[i]);
+        sum = sum + (1.0 / Norm(d)) * d;
+    }
+    const double n = Norm(sum);
+    fan.apex = 0.5 * (origins.lo + origins.hi);
+    fan.axis = n > 0 ? (1.0 / n) * sum : Vec3{1, 0, 0};
+    fan.halfAngle = 0.0;
+    fan.reach = std::numeric_limits<double>::infinity();
+    for (std::uint32_t i : members) GrowUnbounded(fan, segments[i]);
+    return fan;
+}
+
+// A loose segment joins the loose box, or the unbounded cone.
 void AddLoose(BlockFans &fans, const Segment &s) {
     if (!InLooseBox(s)) {
-        fans.looseUnbounded = true;
+        GrowUnbounded(fans.unbounded, s);
         return;
     }
     fans.looseBox.Grow(Origin(s));
@@ -120,7 +161,14 @@ BlockFans BuildFans(const Segment *segments, std::vector<std::uint8_t> &fanOf, c
     // The rest (reflections, refractions: they share no point) is tested segment by
     // segment; the box around its finite segments spares even that when no change comes
     // near it.
-    for (std::uint32_t i : members.back()) AddLoose(fans, segments[i]);
+    std::vector<std::uint32_t> unbounded;
+    for (std::uint32_t i : members.back()) {
+        if (InLooseBox(segments[i]))
+            AddLoose(fans, segments[i]);
+        else
+            unbounded.push_back(i);
+    }
+    fans.unbounded = UnboundedCone(segments, unbounded);
     for (std::size_t i = 0; i < count; ++i) {
         if (fanOf[i] >= fans.fans.size()) fanOf[i] = BlockFans::kLoose;
         fans.looseCount += fanOf[i] == BlockFans::kLoose;
@@ -133,7 +181,7 @@ BlockFans GrowFans(const BlockFans &old, const Segment *segments, std::vector<st
     BlockFans fans;
     fans.fans = old.fans;
     fans.looseBox = old.looseBox;
-    fans.looseUnbounded = old.looseUnbounded;
+    fans.unbounded = old.unbounded;
     fans.fans.resize(std::size_t(apexes.count));  // fans new to this block start empty
     for (std::size_t f = old.fans.size(); f < fans.fans.size(); ++f) fans.fans[f].reach = -1.0;
     std::vector<std::vector<std::uint32_t>> fresh(fans.fans.size());

@@ -185,6 +185,70 @@ TEST(SegmentFans, ConeHoldsRaysThatGrazeACapsule) {
     EXPECT_GT(grazing, 15000);
 }
 
+// Reflections that hit nothing, as a floor patch sends them to the sky: loose segments
+// without an end, from nearby origins in similar directions (with `strays`, one in 50 in
+// any direction, as a curved mirror sends them).
+RecordedBlock SkyReflections(std::mt19937_64 &rng, const Vec3 &patch, double patchSize, bool strays) {
+    std::uniform_real_distribution<double> u(-1, 1);
+    const Vec3 up = Normalised(Vec3{0.3 * u(rng), 1, 0.3 * u(rng)});
+    RecordedBlock b;
+    SampleRecorder recorder;
+    StartRecordingRays(recorder);
+    for (int i = 0; i < 200; ++i) {
+        recorder.Begin(b.segments, b.fanOf, b.apexes);
+        const double eye[3] = {0.3, 2, -20};
+        const Vec3 p = patch + Vec3{patchSize * u(rng), 0, patchSize * u(rng)};
+        const Vec3 toP = Normalised(p - Vec3{eye[0], eye[1], eye[2]});
+        const double d[3] = {toP.x, toP.y, toP.z};
+        RecordRaySegment(eye, d, 10.0);
+        const Vec3 r = strays && i % 50 == 0 ? Normalised(Vec3{u(rng), u(rng), u(rng)})
+                                   : Normalised(up + Vec3{0.1 * u(rng), 0.1 * u(rng), 0.1 * u(rng)});
+        const double po[3] = {p.x, p.y, p.z}, rd[3] = {r.x, r.y, r.z};
+        RecordRaySegment(po, rd, 2e10);
+    }
+    StopRecordingRays();
+    return b;
+}
+
+TEST(SegmentFans, UnboundedConeNeverMissesAHullItsRaysMeet) {
+    std::mt19937_64 rng(37);
+    std::uniform_real_distribution<double> pos(-15, 15), size(0.05, 3), patchSize(0.01, 4), unit(-1, 1);
+    int checked = 0, rejects = 0, unboundedSegments = 0;
+    for (int block = 0; block < 200; ++block) {
+        const bool strays = block % 4 == 0;
+        RecordedBlock b = SkyReflections(rng, Vec3{pos(rng), 0, pos(rng)}, patchSize(rng), strays);
+        const BlockFans fans = BuildFans(b.segments.data(), b.fanOf, b.apexes);
+        ASSERT_GE(fans.unbounded.reach, 0.0);
+        for (int k = 0; k < 300; ++k) {
+            Vec3 lo{pos(rng), pos(rng) * 0.5 + 5, pos(rng)};
+            double edge = size(rng);
+            if (k % 3 == 0) {  // a small box on one of the rays, far or near
+                const Segment &s = b.segments[2 * std::size_t(rng() % 200) + 1];
+                const double t = 1.0 + 60.0 * std::fabs(unit(rng));
+                edge = 0.01;
+                for (int a = 0; a < 3; ++a) lo[a] = s.origin[a] + t * s.direction[a] - 0.5 * edge;
+            }
+            Hull h = MakeHull(Box{lo, lo + Vec3{edge, edge, edge}});
+            if (k % 2) {  // a slanted rod inside the box
+                const Box &box = h.box;
+                h = MakeHull(box, Capsule{box.lo + Vec3{0.05, 0.05, 0.05}, box.hi - Vec3{0.05, 0.05, 0.05}, 0.05});
+            }
+            const bool cone = FanMayMeet(fans.unbounded, h);
+            rejects += !cone && !strays;
+            for (std::size_t i = 0; i < b.segments.size(); ++i) {
+                if (b.fanOf[i] != BlockFans::kLoose || InLooseBox(b.segments[i])) continue;
+                unboundedSegments += k == 0;
+                if (!MayMeet(b.segments[i], h)) continue;
+                ++checked;
+                ASSERT_TRUE(cone) << "block " << block << " hull " << k << " segment " << i;
+            }
+        }
+    }
+    EXPECT_EQ(unboundedSegments, 200 * 200);
+    EXPECT_GT(checked, 2000);
+    EXPECT_GT(rejects, 150 * 300 / 2);  // without strays the cone rejects most hulls
+}
+
 TEST(SegmentFans, GrowingAFanKeepsHoldingItsSegments) {
     std::mt19937_64 rng(23);
     std::uniform_real_distribution<double> pos(-15, 15), size(0.05, 3);

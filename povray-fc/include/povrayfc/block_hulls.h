@@ -30,7 +30,8 @@ struct BlockHulls {
     std::size_t count = 0;
     std::uint32_t local[kMaxLocal];  // candidate number -> index into ChangeIndex::Hulls()
     Mask fan[BlockFans::kMaxFans] = {0};
-    Mask loose = 0;  // loose segments of finite length (InLooseBox)
+    Mask loose = 0;      // loose segments of finite length (InLooseBox)
+    Mask unbounded = 0;  // loose segments without an end (BlockFans::unbounded)
 
     // True when some fan or the loose box may reach a change (then segments need testing).
     bool Any() const;

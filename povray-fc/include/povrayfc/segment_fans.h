@@ -5,10 +5,13 @@
 // shadow rays all run towards one of a few lights. Each bundle lies inside a cone with the
 // shared point as apex (the camera, or a light); a change that no cone reaches cannot meet
 // any of the bundle's segments. Segments that fit no bundle (reflections, refractions)
-// stay "loose" and are tested one by one (a flat mirror's reflections would share the
-// camera's mirror image, but finding such points cost more than it saved on Newton's
-// cradle, where most reflections come from curved chrome and brass). Which bundle a segment belongs to is known when
-// it is recorded (ray_recording.h: FanApexes), so building the cones is one pass.
+// stay "loose": those of finite length are bounded by a box, those that hit nothing (a
+// floor's reflections of the sky) by a cone from the centre of their origins, whose slack
+// is the origins' spread; a change that one of these reaches tests its segments one by
+// one. (A flat mirror's reflections would share the camera's mirror image, but finding
+// such points cost more than it saved on Newton's cradle, where most reflections come
+// from curved chrome and brass.) Which bundle a segment belongs to is known when it is
+// recorded (ray_recording.h: FanApexes), so building the cones is one pass.
 #ifndef POVRAYFC_SEGMENT_FANS_H
 #define POVRAYFC_SEGMENT_FANS_H
 
@@ -50,7 +53,17 @@ struct BlockFans {
     std::vector<SegmentFan> fans;     // by fan number; a fan without segments has reach < 0
     std::size_t looseCount = 0;       // segments in no fan
     Box looseBox;                     // around the loose segments of finite length
-    bool looseUnbounded = false;      // some loose segment has no end (hit nothing)
+    // Around the loose segments without an end (reflections that hit nothing, bound for
+    // the sky): a cone of unbounded reach from the centre of their origins, its slack
+    // the origins' spread. Every point of such a ray lies within that spread of the
+    // point the cone's apex reaches along the same direction; reach < 0 when none.
+    SegmentFan unbounded = NoSegments();
+
+    static SegmentFan NoSegments() {
+        SegmentFan none;
+        none.reach = -1.0;
+        return none;
+    }
 
     std::size_t MemoryBytes() const { return fans.capacity() * sizeof(SegmentFan); }
 };
