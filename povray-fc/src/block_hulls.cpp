@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <optional>
 
 #include "povrayfc/hull.h"
 #include "povrayfc/segment_fans.h"
@@ -63,18 +64,30 @@ bool BlockHulls::SegmentMayMeet(const Segment &s, std::uint8_t fanNumber, const 
     return false;
 }
 
-BlockHulls FindBlockHulls(const BlockRecord &record, const ChangeIndex &changes) {
+namespace {
+
+// The candidates among `candidates` (indices into changes.Hulls(); null: all of them) that
+// the cones `blockFans` reach.
+BlockHulls FindHulls(const BlockFans &blockFans, const ChangeIndex &changes, const std::uint32_t *candidates,
+                     std::size_t candidateCount) {
     BlockHulls result;
-    const std::vector<SegmentFan> &fans = record.fans.fans;
+    const std::vector<SegmentFan> &fans = blockFans.fans;
     Hull everything;
     everything.box = changes.Bounds();
-    const LooseReach looseReach(record.fans, changes.Bounds());
+    const LooseReach looseReach(blockFans, changes.Bounds());
 
+    // Each cone's trigonometry once for all the hulls (only cones with segments).
+    std::optional<FanTester> tester[BlockFans::kMaxFans], unboundedTester;
     bool fanReaches[BlockFans::kMaxFans] = {false};
     bool anyReach = false;
-    for (std::size_t f = 0; f < fans.size(); ++f) anyReach |= fanReaches[f] = FanMayMeet(fans[f], everything);
+    for (std::size_t f = 0; f < fans.size(); ++f) {
+        if (fans[f].reach < 0) continue;
+        tester[f].emplace(fans[f]);
+        anyReach |= fanReaches[f] = tester[f]->MayMeet(everything);
+    }
     const bool looseReaches = looseReach.Meets(changes.Bounds());
-    const bool unboundedReaches = FanMayMeet(record.fans.unbounded, everything);
+    if (blockFans.unbounded.reach >= 0) unboundedTester.emplace(blockFans.unbounded);
+    const bool unboundedReaches = unboundedTester && unboundedTester->MayMeet(everything);
     if (!anyReach && !looseReaches && !unboundedReaches) return result;
 
     auto everythingReachable = [&] {
@@ -84,27 +97,42 @@ BlockHulls FindBlockHulls(const BlockRecord &record, const ChangeIndex &changes)
         result.unbounded = unboundedReaches ? 1 : 0;
         return result;
     };
-    if (changes.HullCount() > BlockHulls::kMaxHullsToSort) return everythingReachable();
+    if (!candidates && changes.HullCount() > BlockHulls::kMaxHullsToSort) return everythingReachable();
 
     const std::vector<Hull> &hulls = changes.Hulls();
-    for (std::size_t h = 0; h < hulls.size(); ++h) {
+    const std::size_t count = candidates ? candidateCount : hulls.size();
+    for (std::size_t c = 0; c < count; ++c) {
+        const std::uint32_t h = candidates ? candidates[c] : std::uint32_t(c);
         // bit f: fan f; bit kMaxFans: the loose box; bit kMaxFans + 1: the unbounded cone
         BlockHulls::Mask reachedBy = 0;
         const BlockHulls::Mask looseBit = BlockHulls::Mask(1) << BlockFans::kMaxFans, unboundedBit = looseBit << 1;
         for (std::size_t f = 0; f < fans.size(); ++f)
-            if (fanReaches[f] && FanMayMeet(fans[f], hulls[h])) reachedBy |= BlockHulls::Mask(1) << f;
+            if (fanReaches[f] && tester[f]->MayMeet(hulls[h])) reachedBy |= BlockHulls::Mask(1) << f;
         if (looseReaches && looseReach.Meets(hulls[h].box)) reachedBy |= looseBit;
-        if (unboundedReaches && FanMayMeet(record.fans.unbounded, hulls[h])) reachedBy |= unboundedBit;
+        if (unboundedReaches && unboundedTester->MayMeet(hulls[h])) reachedBy |= unboundedBit;
         if (!reachedBy) continue;
         if (result.count == BlockHulls::kMaxLocal) return everythingReachable();
         const BlockHulls::Mask bit = BlockHulls::Mask(1) << result.count;
-        result.local[result.count++] = std::uint32_t(h);
+        result.local[result.count++] = h;
         for (std::size_t f = 0; f < fans.size(); ++f)
             if (reachedBy & (BlockHulls::Mask(1) << f)) result.fan[f] |= bit;
         if (reachedBy & looseBit) result.loose |= bit;
         if (reachedBy & unboundedBit) result.unbounded |= bit;
     }
     return result;
+}
+
+}  // namespace
+
+BlockHulls FindBlockHulls(const BlockFans &fans, const ChangeIndex &changes) {
+    return FindHulls(fans, changes, nullptr, 0);
+}
+
+BlockHulls FindGroupHulls(const BlockFans &group, const ChangeIndex &changes, const BlockHulls &block) {
+    if (!block.Any()) return BlockHulls();
+    // A group's segments are some of the block's: only the block's candidates can reach
+    // them (all of them when the block listed none).
+    return block.all ? FindHulls(group, changes, nullptr, 0) : FindHulls(group, changes, block.local, block.count);
 }
 
 }  // namespace povrayfc

@@ -2,6 +2,7 @@
 #include "povrayfc/block_tracer.h"
 
 #include "povrayfc/block_hulls.h"
+#include "povrayfc/group_fans.h"
 
 #include <algorithm>
 #include <cmath>
@@ -55,6 +56,7 @@ bool BlockTracer::Begin(std::uint32_t serial, int left, int top, int right, int 
     next_.apexes.Clear();
     nextFanOf_.clear();
     tracedSegments_.clear();
+    tracedGroups_.clear();
     const std::size_t area = std::size_t(right - left + 1) * std::size_t(bottom - top + 1);
     next_.pixels.assign(area * 5, 0.0f);
     tracedPixels_.assign(area, 0);
@@ -80,16 +82,24 @@ bool BlockTracer::Begin(std::uint32_t serial, int left, int top, int right, int 
     // The block's clean samples: those none of whose rays may meet a change. Most blocks
     // are far from every change, which the cones around their segments show at once.
     const std::size_t n = old_->samples.size();
-    if (!old_->fansBuilt) {
-        old_->fans = BuildFans(old_->segments.data(), old_->fanOf, old_->apexes);
-        old_->fansBuilt = true;
-    }
-    const BlockHulls reach = FindBlockHulls(*old_, *plan.changes);
+    if (!old_->fansBuilt) BuildRecordFans(*old_);
+    const BlockHulls reach = FindBlockHulls(old_->fans, *plan.changes);
     bool anyDirty = false;
     if (reach.Any() || old_->hasEverything) {
+        // The block's cones reach a change (or a sample depends on everything): narrow
+        // it down to the groups of samples whose own cones reach it.
+        groupReach_.resize(old_->groupFans.size());
+        groupReaches_.resize(old_->groupFans.size());
+        for (std::size_t g = 0; g < groupReach_.size(); ++g) {
+            groupReach_[g] = FindGroupHulls(old_->groupFans[g], *plan.changes, reach);
+            groupReaches_[g] = groupReach_[g].Any();
+        }
         oldDirty_.resize(n);
         for (std::size_t i = 0; i < n; ++i) {
-            oldDirty_[i] = SampleIsDirty(old_->samples[i], *old_, *plan.changes, reach);
+            const StoredSample &s = old_->samples[i];
+            const std::size_t g = old_->GroupOf(s.x, s.y);
+            oldDirty_[i] = s.segmentCount == StoredSample::kEverything ||
+                           (groupReaches_[g] && SampleIsDirty(s, *old_, *plan.changes, groupReach_[g]));
             anyDirty |= oldDirty_[i] != 0;
         }
     }
@@ -183,6 +193,7 @@ void BlockTracer::EndSample(double x, double y, const float rgbft[5]) {
         s.firstSegment = std::uint32_t(recorder_.First());
         s.segmentCount = std::uint32_t(recorder_.Count());
         tracedSegments_.emplace_back(recorder_.First(), recorder_.Count());
+        tracedGroups_.push_back(std::uint32_t(next_.GroupOf(x, y)));
     }
     next_.samples.push_back(s);
 }
@@ -267,8 +278,7 @@ void BlockTracer::End() {
         std::size_t fresh = 0;
         for (const auto &range : tracedSegments_) fresh += range.second;
         if (old_ && old_->fansBuilt && 4 * fresh <= record->segments.size()) {
-            record->fans = GrowFans(old_->fans, record->segments.data(), record->fanOf, next_.apexes, tracedSegments_);
-            record->fansBuilt = true;
+            GrowRecordFans(*record, old_->groupFans, tracedSegments_, tracedGroups_);
         }
         for (const StoredSample &s : record->samples)
             record->hasEverything |= s.segmentCount == StoredSample::kEverything;

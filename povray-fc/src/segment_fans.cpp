@@ -123,9 +123,18 @@ SegmentFan UnboundedCone(const Segment *segments, const std::vector<std::uint32_
     const double n = Norm(sum);
     fan.apex = 0.5 * (origins.lo + origins.hi);
     fan.axis = n > 0 ? (1.0 / n) * sum : Vec3{1, 0, 0};
-    fan.halfAngle = 0.0;
     fan.reach = std::numeric_limits<double>::infinity();
-    for (std::uint32_t i : members) GrowUnbounded(fan, segments[i]);
+    double c = 1.0, spread = 0.0;
+    for (std::uint32_t i : members) {
+        const Vec3 d = Direction(segments[i]);
+        c = std::min(c, Dot((1.0 / Norm(d)) * d, fan.axis));
+        spread = std::max(spread, Norm(Origin(segments[i]) - fan.apex));
+    }
+    // As GrowUnbounded widens, with one arc cosine for all.
+    spread *= 1.0 + 1e-9;
+    fan.halfAngle = std::min(M_PI, std::acos(std::clamp(c, -1.0, 1.0)) + 1e-9);
+    fan.slack = spread + 1e-12 * (1.0 + MaxAbs(fan.apex));
+    fan.originReach = spread;
     return fan;
 }
 
@@ -141,14 +150,13 @@ void AddLoose(BlockFans &fans, const Segment &s) {
 
 }  // namespace
 
-BlockFans BuildFans(const Segment *segments, std::vector<std::uint8_t> &fanOf, const FanApexes &apexes) {
+namespace {
+
+// The cones of the segments `members[f]` of each fan f, and of the loose ones in
+// members[apexes.count].
+BlockFans FansOfMembers(const Segment *segments, const FanApexes &apexes,
+                        const std::vector<std::vector<std::uint32_t>> &members) {
     BlockFans fans;
-    const std::size_t count = fanOf.size();
-    std::vector<std::vector<std::uint32_t>> members(std::size_t(apexes.count) + 1);
-    for (std::size_t i = 0; i < count; ++i) {
-        const std::uint8_t f = fanOf[i];
-        members[f < apexes.count ? f : apexes.count].push_back(std::uint32_t(i));
-    }
     for (int f = 0; f < apexes.count; ++f) {
         const std::vector<std::uint32_t> &m = members[std::size_t(f)];
         const double *p = apexes.point[f];
@@ -159,8 +167,8 @@ BlockFans BuildFans(const Segment *segments, std::vector<std::uint8_t> &fanOf, c
         fans.fans.push_back(Cone(segments, m, apex));
     }
     // The rest (reflections, refractions: they share no point) is tested segment by
-    // segment; the box around its finite segments spares even that when no change comes
-    // near it.
+    // segment; the box around its finite segments, and the cone around those to
+    // infinity, spare even that when no change comes near them.
     std::vector<std::uint32_t> unbounded;
     for (std::uint32_t i : members.back()) {
         if (InLooseBox(segments[i]))
@@ -169,15 +177,89 @@ BlockFans BuildFans(const Segment *segments, std::vector<std::uint8_t> &fanOf, c
             unbounded.push_back(i);
     }
     fans.unbounded = UnboundedCone(segments, unbounded);
-    for (std::size_t i = 0; i < count; ++i) {
-        if (fanOf[i] >= fans.fans.size()) fanOf[i] = BlockFans::kLoose;
-        fans.looseCount += fanOf[i] == BlockFans::kLoose;
-    }
     return fans;
+}
+
+}  // namespace
+
+BlockFans BuildFans(const Segment *segments, std::vector<std::uint8_t> &fanOf, const FanApexes &apexes) {
+    ValidateFanNumbers(fanOf, apexes);
+    std::vector<std::vector<std::uint32_t>> members(std::size_t(apexes.count) + 1);
+    for (std::size_t i = 0; i < fanOf.size(); ++i)
+        members[std::min<std::size_t>(fanOf[i], std::size_t(apexes.count))].push_back(std::uint32_t(i));
+    return FansOfMembers(segments, apexes, members);
+}
+
+BlockFans BuildFansOf(const Segment *segments, const std::uint8_t *fanOf, const FanApexes &apexes,
+                      const std::vector<std::uint32_t> &indices) {
+    std::vector<std::vector<std::uint32_t>> members(std::size_t(apexes.count) + 1);
+    for (std::uint32_t i : indices) members[std::min<std::size_t>(fanOf[i], std::size_t(apexes.count))].push_back(i);
+    return FansOfMembers(segments, apexes, members);
+}
+
+void ValidateFanNumbers(std::vector<std::uint8_t> &fanOf, const FanApexes &apexes) {
+    for (std::uint8_t &f : fanOf)
+        if (f >= apexes.count) f = BlockFans::kLoose;
+}
+
+namespace {
+
+// One cone holding `parts` (reach < 0: empty): apex at the first part's, or the centre of
+// theirs when they differ (the unbounded cones of groups), each part's apex offset added
+// to its slack and reach; axis along the parts' mean axis, wide enough for each part's.
+SegmentFan MergeCones(const std::vector<const SegmentFan *> &parts, bool centreApex) {
+    SegmentFan merged = BlockFans::NoSegments();
+    Box apexes;
+    Vec3 sum{0, 0, 0};
+    for (const SegmentFan *p : parts) {
+        apexes.Grow(p->apex);
+        sum = sum + p->axis;
+    }
+    if (parts.empty()) return merged;
+    merged.apex = centreApex ? 0.5 * (apexes.lo + apexes.hi) : parts[0]->apex;
+    const double n = Norm(sum);
+    merged.axis = n > 1e-3 ? (1.0 / n) * sum : parts[0]->axis;
+    merged.reach = 0.0;
+    merged.halfAngle = 0.0;
+    for (const SegmentFan *p : parts) {
+        const double offset = Norm(p->apex - merged.apex) * (1.0 + 1e-9);
+        const double angle = std::acos(std::clamp(Dot(p->axis, merged.axis), -1.0, 1.0));
+        merged.halfAngle = std::min(M_PI, std::max(merged.halfAngle, angle + p->halfAngle + 1e-9));
+        merged.reach = std::max(merged.reach, (p->reach + offset) * (1.0 + 1e-12));
+        merged.slack = std::max(merged.slack, (p->slack + offset) * (1.0 + 1e-12));
+        merged.originReach = std::max(merged.originReach, p->originReach + offset);
+    }
+    return merged;
+}
+
+}  // namespace
+
+BlockFans MergeFans(const std::vector<BlockFans> &parts, const FanApexes &apexes) {
+    BlockFans merged;
+    std::vector<const SegmentFan *> cones;
+    for (int f = 0; f < apexes.count; ++f) {
+        cones.clear();
+        for (const BlockFans &p : parts)
+            if (std::size_t(f) < p.fans.size() && p.fans[std::size_t(f)].reach >= 0) cones.push_back(&p.fans[std::size_t(f)]);
+        merged.fans.push_back(MergeCones(cones, false));
+    }
+    cones.clear();
+    for (const BlockFans &p : parts) {
+        merged.looseBox.Grow(p.looseBox);
+        if (p.unbounded.reach >= 0) cones.push_back(&p.unbounded);
+    }
+    merged.unbounded = MergeCones(cones, true);
+    return merged;
 }
 
 BlockFans GrowFans(const BlockFans &old, const Segment *segments, std::vector<std::uint8_t> &fanOf,
                    const FanApexes &apexes, const std::vector<std::pair<std::size_t, std::size_t>> &added) {
+    ValidateFanNumbers(fanOf, apexes);
+    return GrowFansOf(old, segments, fanOf.data(), apexes, added);
+}
+
+BlockFans GrowFansOf(const BlockFans &old, const Segment *segments, const std::uint8_t *fanOf,
+                     const FanApexes &apexes, const std::vector<std::pair<std::size_t, std::size_t>> &added) {
     BlockFans fans;
     fans.fans = old.fans;
     fans.looseBox = old.looseBox;
@@ -188,12 +270,10 @@ BlockFans GrowFans(const BlockFans &old, const Segment *segments, std::vector<st
     for (const auto &range : added)
         for (std::size_t i = range.first; i < range.first + range.second; ++i) {
             const std::uint8_t f = fanOf[i];
-            if (f < fans.fans.size()) {
+            if (f < fans.fans.size())
                 fresh[f].push_back(std::uint32_t(i));
-            } else {
-                fanOf[i] = BlockFans::kLoose;
+            else
                 AddLoose(fans, segments[i]);
-            }
         }
     for (std::size_t f = 0; f < fans.fans.size(); ++f) {
         SegmentFan &fan = fans.fans[f];
@@ -214,65 +294,71 @@ BlockFans GrowFans(const BlockFans &old, const Segment *segments, std::vector<st
             fan.originReach = std::max(fan.originReach, w.originReach);
         }
     }
-    for (std::size_t i = 0; i < fanOf.size(); ++i) {
-        if (fanOf[i] >= fans.fans.size()) fanOf[i] = BlockFans::kLoose;
-        fans.looseCount += fanOf[i] == BlockFans::kLoose;
-    }
     return fans;
 }
 
 namespace {
 
-// The smallest angle between the unit vector `axis` and the directions from the apex to
-// the points of the segment [a, b] (both relative to the apex, neither at it), less a
-// hair for rounding. Seen from the apex the segment sweeps a great-circle arc; the
-// nearest point of the arc to `axis` is either the axis projected into the arc's plane,
-// when that falls inside the arc, or one of its ends.
-double SmallestAngleToSegment(const Vec3 &axis, const Vec3 &a, const Vec3 &b) {
+// The largest cosine of the angle between the unit vector `axis` and the directions from
+// the apex to the points of the segment [a, b] (both relative to the apex, neither at
+// it), plus a hair for rounding; above 1 when no bound holds. Seen from the apex the
+// segment sweeps a great-circle arc; the nearest point of the arc to `axis` is either the
+// axis projected into the arc's plane, when that falls inside the arc, or one of its ends.
+double LargestCosineToSegment(const Vec3 &axis, const Vec3 &a, const Vec3 &b) {
     const Vec3 ua = (1.0 / Norm(a)) * a, ub = (1.0 / Norm(b)) * b;
-    double phi = std::min(std::acos(std::clamp(Dot(axis, ua), -1.0, 1.0)),
-                          std::acos(std::clamp(Dot(axis, ub), -1.0, 1.0)));
+    double best = std::max(Dot(axis, ua), Dot(axis, ub));
     const Vec3 n = Cross(ua, ub);
     const double sn = Norm(n);
     if (sn < 1e-6) {
         // Nearly collinear with the apex: on its one side the arc is shorter than
-        // asin(sn), and the ends bound it to within that; through the apex, no bound.
-        return Dot(ua, ub) > 0 ? phi - std::asin(sn) - 1e-9 : 0.0;
+        // asin(sn) < 1.01 sn, and a cosine moves no more than its angle; through the
+        // apex, no bound.
+        return Dot(ua, ub) > 0 ? best + 1.01 * sn + 1e-12 : 2.0;
     }
     const Vec3 un = (1.0 / sn) * n;
     const Vec3 w = axis - Dot(axis, un) * un;  // the axis in the arc's plane
-    if (Dot(Cross(ua, w), un) >= 0 && Dot(Cross(w, ub), un) >= 0)
-        phi = std::min(phi, std::acos(std::clamp(Norm(w), -1.0, 1.0)));
-    return phi - 1e-9;
-}
-
-// The cone against a sphere (centre c, radius) or, when `segmentEnd` is given, against
-// the capsule around [c, *segmentEnd]: a point within `radius` of a point P, seen from
-// the apex, is at most asin(radius / |P - apex|) off the direction to P.
-bool ConeMayReach(const SegmentFan &fan, const Vec3 &c, const Vec3 *segmentEnd, double radius) {
-    const Vec3 v = c - fan.apex;
-    double dist = Norm(v), phi;
-    if (segmentEnd) {
-        const Vec3 w = *segmentEnd - fan.apex, ab = w - v;
-        const double len2 = Dot(ab, ab);
-        const double t = len2 > 0.0 ? std::clamp(-Dot(v, ab) / len2, 0.0, 1.0) : 0.0;
-        dist = Norm(v + t * ab) * (1.0 - 1e-12);  // the nearest point of the axis
-        if (dist <= radius) return true;
-        if (dist - radius > fan.reach) return false;
-        phi = SmallestAngleToSegment(fan.axis, v, w);
-    } else {
-        if (dist <= radius) return true;
-        if (dist - radius > fan.reach) return false;
-        phi = std::acos(std::clamp(Dot(v, fan.axis) / dist, -1.0, 1.0));
-    }
-    const double beta = std::asin(std::min(1.0, radius / dist));
-    return phi <= fan.halfAngle + beta + 1e-9;
+    if (Dot(Cross(ua, w), un) >= 0 && Dot(Cross(w, ub), un) >= 0) best = std::max(best, Norm(w));
+    return best + 1e-12;
 }
 
 }  // namespace
 
-bool FanMayMeet(const SegmentFan &fan, const Hull &hull) {
-    if (fan.reach < 0) return false;  // no segments
+FanTester::FanTester(const SegmentFan &fan)
+    : fan_(fan), cosHalf_(std::cos(fan.halfAngle)), sinHalf_(std::sin(fan.halfAngle)) {}
+
+// Whether a point within `radius` of a point P at distance `dist` (> radius) from the
+// apex may lie in the cone, given the largest cosine `cosine` of the angle between the
+// axis and the directions to the candidates P. Seen from the apex, such a point is at
+// most beta = asin(radius / dist) off the direction to P, so the test is
+// angle <= halfAngle + beta, done on cosines (no inverse trigonometry): cos(angle) >=
+// cos(halfAngle + beta) less a hair (1e-9 in cosine is wider than 1e-9 radians).
+bool FanTester::WithinAngle(double cosine, double radius, double dist) const {
+    const double sinBeta = std::min(1.0, radius / dist), cosBeta = std::sqrt(1.0 - sinBeta * sinBeta);
+    // halfAngle + beta >= pi: every direction (beta <= pi/2, so halfAngle >= pi/2).
+    if (cosHalf_ <= 0.0 && sinBeta >= sinHalf_) return true;
+    return cosine >= cosHalf_ * cosBeta - sinHalf_ * sinBeta - 1e-9;
+}
+
+bool FanTester::MayReachSphere(const Vec3 &c, double radius) const {
+    const Vec3 v = c - fan_.apex;
+    const double dist = Norm(v);
+    if (dist <= radius) return true;
+    if (dist - radius > fan_.reach) return false;
+    return WithinAngle(Dot(v, fan_.axis) / dist, radius, dist);
+}
+
+bool FanTester::MayReachCapsule(const Vec3 &a, const Vec3 &b, double radius) const {
+    const Vec3 v = a - fan_.apex, w = b - fan_.apex, ab = w - v;
+    const double len2 = Dot(ab, ab);
+    const double t = len2 > 0.0 ? std::clamp(-Dot(v, ab) / len2, 0.0, 1.0) : 0.0;
+    const double dist = Norm(v + t * ab) * (1.0 - 1e-12);  // the nearest point of the axis
+    if (dist <= radius) return true;
+    if (dist - radius > fan_.reach) return false;
+    return WithinAngle(LargestCosineToSegment(fan_.axis, v, w), radius, dist);
+}
+
+bool FanTester::MayMeet(const Hull &hull) const {
+    if (fan_.reach < 0) return false;  // no segments
     const Box &b = hull.box;
     if (b.Empty()) return false;
     if (!b.IsFinite()) return true;
@@ -280,14 +366,16 @@ bool FanMayMeet(const SegmentFan &fan, const Hull &hull) {
     const double h = std::max(e.x, std::max(e.y, e.z));
     // The stored segments' rounding (see SegmentMargin), bounded over the fan's origins:
     // the apex itself, or points within `reach` of it.
-    const double spread = 2.0 * fan.originReach;
-    const double margin = 0x1p-19 * (MaxAbs(fan.apex) + MaxAbs(fan.apex - c) + spread + h) + 1e-30;
-    const double widen = fan.slack + 2.0 * margin;  // 2 > sqrt(3): max norm to length
-    if (!ConeMayReach(fan, c, nullptr, Norm(e) + widen)) return false;
+    const double spread = 2.0 * fan_.originReach;
+    const double margin = 0x1p-19 * (MaxAbs(fan_.apex) + MaxAbs(fan_.apex - c) + spread + h) + 1e-30;
+    const double widen = fan_.slack + 2.0 * margin;  // 2 > sqrt(3): max norm to length
+    if (!MayReachSphere(c, Norm(e) + widen)) return false;
     // A slanted cylinder's box (a string, a rod) is far wider than the cylinder: its
     // capsule keeps the blocks that only see past it from testing every segment.
     if (!hull.hasCapsule) return true;
-    return ConeMayReach(fan, hull.capsule.a, &hull.capsule.b, hull.capsule.radius + widen);
+    return MayReachCapsule(hull.capsule.a, hull.capsule.b, hull.capsule.radius + widen);
 }
+
+bool FanMayMeet(const SegmentFan &fan, const Hull &hull) { return FanTester(fan).MayMeet(hull); }
 
 }  // namespace povrayfc

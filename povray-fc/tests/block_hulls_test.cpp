@@ -7,6 +7,7 @@
 
 #include "povrayfc/block_hulls.h"
 #include "povrayfc/ray_recording.h"
+#include "povrayfc/sample_store.h"
 #include "povrayfc/segment_fans.h"
 
 using namespace povrayfc;
@@ -85,7 +86,7 @@ TEST(BlockHulls, NeverLeavesOutAHullASegmentMeets) {
         const int count = trial % 3 == 0 ? 8 : (trial % 3 == 1 ? 200 : 700);
         const std::vector<Hull> hulls = SpreadHulls(rng, count, trial % 4 == 0 ? 3.0 : 0.4);
         const ChangeIndex changes(hulls);
-        const BlockHulls reach = FindBlockHulls(record, changes);
+        const BlockHulls reach = FindBlockHulls(record.fans, changes);
         for (std::size_t i = 0; i < record.segments.size(); ++i) {
             const Segment &s = record.segments[i];
             const bool truth = BruteForceMayMeet(s, changes.Hulls());
@@ -108,7 +109,7 @@ TEST(BlockHulls, ANarrowBlockListsFewOfManySpreadHulls) {
     const BlockRecord record = RecordedBlock(rng, 0.01);
     const ChangeIndex changes(SpreadHulls(rng, 300, 0.3));
     ASSERT_TRUE(changes.HasGrid());
-    const BlockHulls reach = FindBlockHulls(record, changes);
+    const BlockHulls reach = FindBlockHulls(record.fans, changes);
     // The point of the per-block list: a handful of candidates, not "all" (the grid walk).
     EXPECT_FALSE(reach.all);
     EXPECT_LT(reach.count, 64u);
@@ -120,7 +121,7 @@ TEST(BlockHulls, NoChangeNearTheBlockNeedsNoSegmentTest) {
     Hull far;
     far.box = Box{Vec3{500, 500, 500}, Vec3{501, 501, 501}};
     const ChangeIndex changes(std::vector<Hull>{far});
-    EXPECT_FALSE(FindBlockHulls(record, changes).Any());
+    EXPECT_FALSE(FindBlockHulls(record.fans, changes).Any());
 }
 
 TEST(BlockHulls, MoreCandidatesThanAMaskHoldsFallBackToTheWholeIndex) {
@@ -128,7 +129,7 @@ TEST(BlockHulls, MoreCandidatesThanAMaskHoldsFallBackToTheWholeIndex) {
     const BlockRecord record = RecordedBlock(rng, 0.5);
     // Big hulls everywhere: every fan reaches far more than 64 of them.
     const ChangeIndex changes(SpreadHulls(rng, 400, 4.0));
-    const BlockHulls reach = FindBlockHulls(record, changes);
+    const BlockHulls reach = FindBlockHulls(record.fans, changes);
     EXPECT_TRUE(reach.all);
     EXPECT_TRUE(reach.Any());
     for (std::size_t i = 0; i < record.segments.size(); ++i) {

@@ -7,7 +7,7 @@
 #include <cstdint>
 
 #include "povrayfc/change_index.h"
-#include "povrayfc/sample_store.h"
+#include "povrayfc/segment_fans.h"
 #include "povrayfc/segment.h"
 
 namespace povrayfc {
@@ -39,8 +39,11 @@ struct BlockHulls {
     bool SegmentMayMeet(const Segment &s, std::uint8_t fanNumber, const ChangeIndex &changes) const;
 };
 
-// The candidates of a record whose fans are built.
-BlockHulls FindBlockHulls(const BlockRecord &record, const ChangeIndex &changes);
+// The candidates of a block whose fans are built (BlockRecord::fans).
+BlockHulls FindBlockHulls(const BlockFans &fans, const ChangeIndex &changes);
+// The candidates of one group of the block's samples (BlockRecord::groupFans), among
+// those of the block.
+BlockHulls FindGroupHulls(const BlockFans &group, const ChangeIndex &changes, const BlockHulls &block);
 
 }  // namespace povrayfc
 

@@ -19,6 +19,7 @@
 #include <memory>
 #include <vector>
 
+#include "povrayfc/block_hulls.h"
 #include "povrayfc/frame_plan.h"
 #include "povrayfc/ray_recording.h"
 #include "povrayfc/sample_store.h"
@@ -84,6 +85,9 @@ class BlockTracer {
     BlockRecord next_;                       // the record being built for this frame
     std::vector<std::uint8_t> nextFanOf_;    // per segment of next_: its fan
     std::vector<std::pair<std::size_t, std::size_t>> tracedSegments_;  // (first, count) per traced sample
+    std::vector<std::uint32_t> tracedGroups_;  // per traced sample: its group (BlockRecord::GroupOf)
+    std::vector<BlockHulls> groupReach_;       // per group of old_: the changes it may reach
+    std::vector<std::uint8_t> groupReaches_;   // per group of old_: groupReach_[g].Any()
     std::vector<std::uint8_t> tracedPixels_; // per pixel of the block
     std::uint64_t tracedSamples_ = 0, reusedSamples_ = 0;
     int changed_[4] = {0, 0, -1, -1};       // left, top, right, bottom of the changed pixels

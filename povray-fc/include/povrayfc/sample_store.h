@@ -15,6 +15,8 @@
 #ifndef POVRAYFC_SAMPLE_STORE_H
 #define POVRAYFC_SAMPLE_STORE_H
 
+#include <algorithm>
+#include <cmath>
 #include <cstddef>
 #include <cstdint>
 #include <memory>
@@ -46,18 +48,40 @@ struct BlockRecord {
     // Cones around those bundles, for a quick "nothing near", built when a frame first
     // tests the block (a block no change comes near, or a full frame, never pays).
     BlockFans fans;
+    // The same cones per group of kGroupPixels x kGroupPixels pixels (group_fans.h): when
+    // a change reaches the block's cones, only the groups it also reaches test their
+    // samples' segments one by one. Built and grown with `fans`.
+    std::vector<BlockFans> groupFans;
     bool fansBuilt = false;
     bool hasEverything = false; // a sample depends on everything (any change dirties it)
 
+    static constexpr int kGroupPixels = 8;
+
     int Width() const { return right - left + 1; }
     int Height() const { return bottom - top + 1; }
+    int GroupsPerRow() const { return (Width() + kGroupPixels - 1) / kGroupPixels; }
+    std::size_t GroupCount() const {
+        return std::size_t(GroupsPerRow()) * std::size_t((Height() + kGroupPixels - 1) / kGroupPixels);
+    }
+    // The group of a sample at (x, y): that of the nearest pixel centre inside the block
+    // (AA method 1 samples the row above and the column left of a block).
+    std::size_t GroupOf(double x, double y) const {
+        const int px = std::clamp(int(std::floor(x + 0.5)), left, right) - left;
+        const int py = std::clamp(int(std::floor(y + 0.5)), top, bottom) - top;
+        return std::size_t(py / kGroupPixels) * std::size_t(GroupsPerRow()) + std::size_t(px / kGroupPixels);
+    }
     bool Covers(int l, int t, int r, int b) const { return l == left && t == top && r == right && b == bottom; }
     const float *Pixel(int x, int y) const {
         return &pixels[(std::size_t(y - top) * std::size_t(Width()) + std::size_t(x - left)) * 5];
     }
     std::size_t MemoryBytes() const {
         return sizeof(*this) + samples.capacity() * sizeof(StoredSample) + segments.capacity() * sizeof(Segment) +
-               pixels.capacity() * sizeof(float) + fanOf.capacity() + fans.MemoryBytes();
+               pixels.capacity() * sizeof(float) + fanOf.capacity() + fans.MemoryBytes() + GroupFansMemoryBytes();
+    }
+    std::size_t GroupFansMemoryBytes() const {
+        std::size_t bytes = groupFans.capacity() * sizeof(BlockFans);
+        for (const BlockFans &g : groupFans) bytes += g.MemoryBytes();
+        return bytes;
     }
 };
 

@@ -51,7 +51,6 @@ struct BlockFans {
     static constexpr std::size_t kMaxFans = FanApexes::kMax;
 
     std::vector<SegmentFan> fans;     // by fan number; a fan without segments has reach < 0
-    std::size_t looseCount = 0;       // segments in no fan
     Box looseBox;                     // around the loose segments of finite length
     // Around the loose segments without an end (reflections that hit nothing, bound for
     // the sky): a cone of unbounded reach from the centre of their origins, its slack
@@ -76,16 +75,46 @@ inline bool InLooseBox(const Segment &s) { return s.length < 1e9f; }
 // recording; numbers without an apex are made kLoose) and the fans' apexes.
 BlockFans BuildFans(const Segment *segments, std::vector<std::uint8_t> &fanOf, const FanApexes &apexes);
 
+// Makes every fan number without an apex in `apexes` kLoose (BuildFans and GrowFans do).
+void ValidateFanNumbers(std::vector<std::uint8_t> &fanOf, const FanApexes &apexes);
+
+// The cones of some of the segments (`indices`), whose `fanOf` is valid: a group of a
+// block's samples (group_fans.h).
+BlockFans BuildFansOf(const Segment *segments, const std::uint8_t *fanOf, const FanApexes &apexes,
+                      const std::vector<std::uint32_t> &indices);
+
 // The fans of a replayed block, cheaply: `old` were the fans of the segments it kept, and
 // the segments in `added` (first index, count) were traced anew; each fan only widens to
 // hold its new members. (Cones then never narrow: the caller rebuilds from scratch when
 // much of a block is new.)
 BlockFans GrowFans(const BlockFans &old, const Segment *segments, std::vector<std::uint8_t> &fanOf,
                    const FanApexes &apexes, const std::vector<std::pair<std::size_t, std::size_t>> &added);
+// The same for a group's fans, with a valid `fanOf`.
+BlockFans GrowFansOf(const BlockFans &old, const Segment *segments, const std::uint8_t *fanOf,
+                     const FanApexes &apexes, const std::vector<std::pair<std::size_t, std::size_t>> &added);
+
+// Cones that hold every segment the cones of `parts` hold (for each fan, and the loose
+// box and unbounded cone): a block's from its groups', without a pass over the segments.
+BlockFans MergeFans(const std::vector<BlockFans> &parts, const FanApexes &apexes);
 
 // True when a segment within `fan` may meet `hull` (conservative, including the float
 // rounding of the stored segments).
 bool FanMayMeet(const SegmentFan &fan, const Hull &hull);
+
+// FanMayMeet for one fan against many hulls: the cone's cosine and sine once.
+class FanTester {
+  public:
+    explicit FanTester(const SegmentFan &fan);
+    bool MayMeet(const Hull &hull) const;
+
+  private:
+    bool MayReachSphere(const Vec3 &centre, double radius) const;
+    bool MayReachCapsule(const Vec3 &a, const Vec3 &b, double radius) const;
+    bool WithinAngle(double cosine, double radius, double dist) const;
+
+    const SegmentFan &fan_;
+    double cosHalf_, sinHalf_;
+};
 
 }  // namespace povrayfc
 
