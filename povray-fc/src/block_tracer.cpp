@@ -109,7 +109,8 @@ bool BlockTracer::Begin(std::uint32_t serial, int left, int top, int right, int 
         plan.counters->reusedBlocks += 1;
         return true;
     }
-    IndexOldSamples();
+    nextOld_ = 0;
+    oldIndexed_ = false;
     // Reused segments keep their fan numbers, so the new record starts from the old apexes.
     next_.apexes = old_->apexes;
     return false;
@@ -133,15 +134,30 @@ void BlockTracer::IndexOldSamples() {
     }
 }
 
-bool BlockTracer::FindOld(double x, double y, std::uint32_t &index) const {
+bool BlockTracer::FindOld(double x, double y, std::uint32_t &index) {
+    // POV-Ray asks for a block's samples in the order it asked for them last frame,
+    // unless anti-aliasing now supersamples other pixels: try the one after the last
+    // found first, and index them all only when that misses.
+    // Exact comparisons: POV-Ray computes a sample's position the same way every frame.
+    if (nextOld_ < old_->samples.size()) {
+        const StoredSample &s = old_->samples[nextOld_];
+        if (s.x == x && s.y == y) {
+            index = nextOld_++;
+            return true;
+        }
+    }
+    if (!oldIndexed_) {
+        IndexOldSamples();
+        oldIndexed_ = true;
+    }
     std::uint32_t slot = KeyHash(x, y) & oldMask_;
     for (;;) {
         const std::uint32_t entry = oldIndex_[slot];
         if (entry == 0) return false;
         const StoredSample &s = old_->samples[entry - 1];
-        // Exact comparison: POV-Ray computes a sample's position the same way every frame.
         if (s.x == x && s.y == y) {
             index = entry - 1;
+            nextOld_ = index + 1;
             return true;
         }
         slot = (slot + 1) & oldMask_;

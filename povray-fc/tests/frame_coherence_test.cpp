@@ -453,3 +453,57 @@ TEST_F(FrameCoherenceRun, BusyFramesPauseLongerEachTime) {
 
 }  // namespace
 }  // namespace povrayfc
+
+namespace povrayfc {
+namespace {
+
+// A replayed block reuses every clean sample whatever order POV-Ray asks for them in
+// (anti-aliasing that supersamples other pixels than last frame asks in another order,
+// and for samples never stored): the tracer looks the samples up, not just in turn.
+TEST_F(FrameCoherenceRun, ReplayReusesCleanSamplesAskedInAnyOrder) {
+    FrameCoherence &fc = FrameCoherence::Get();
+    // One sample per pixel; from pixel (0, 0) a ray through the box at x = boxX.
+    auto frame = [&](int n, double boxX, bool reversed, int &reused) {
+        ToyScene s;
+        s.boxes.push_back({7, Box{Vec3{boxX, 0, 10}, Vec3{boxX + 1, 1, 11}}});
+        PublishSceneSignature(kScene, Signature(s));
+        fc.BeginFrame(true, ToySetup(n), kScene, {});
+        BlockTracer tracer(fc.Plan());
+        int traced = 0;
+        reused = 0;
+        if (!tracer.Begin(0, 0, 0, kBlock - 1, kBlock - 1)) {
+            for (int k = 0; k < kBlock * kBlock + 1; ++k) {
+                const int i = reversed ? kBlock * kBlock - k : k;  // one more: a new sample
+                const double x = i % kBlock + (i == kBlock * kBlock ? 0.25 : 0.0), y = i / kBlock % kBlock;
+                float c[5] = {0, 0, 0, 0, 0};
+                if (tracer.Reuse(x, y, c)) {
+                    ++reused;
+                    continue;
+                }
+                tracer.BeginSample();
+                const double o[3] = {x, y, -3}, d[3] = {0, 0, 1};
+                RecordRaySegment(o, d, i == 0 ? 20.0 : 1.0);  // only (0, 0) reaches the box
+                tracer.EndSample(x, y, c);
+                ++traced;
+            }
+            for (int y = 0; y < kBlock; ++y)
+                for (int x = 0; x < kBlock; ++x) {
+                    const float c[5] = {0, 0, 0, 0, 0};
+                    tracer.SetPixel(x, y, c);
+                }
+            tracer.End();
+        }
+        fc.EndFrame(0);
+        return traced;
+    };
+    int reused = 0;
+    EXPECT_EQ(frame(1, 0.0, false, reused), kBlock * kBlock + 1);
+    // The box moves off the ray of (0, 0): that sample alone is traced, in either order.
+    EXPECT_EQ(frame(2, 5.0, true, reused), 1);
+    EXPECT_EQ(reused, kBlock * kBlock);
+    EXPECT_EQ(frame(3, 0.0, false, reused), 1);
+    EXPECT_EQ(reused, kBlock * kBlock);
+}
+
+}  // namespace
+}  // namespace povrayfc

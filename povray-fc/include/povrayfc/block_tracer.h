@@ -69,7 +69,7 @@ class BlockTracer {
     bool Active() const { return active_; }
 
   private:
-    bool FindOld(double x, double y, std::uint32_t &index) const;
+    bool FindOld(double x, double y, std::uint32_t &index);
     void IndexOldSamples();
     void MarkTraced(double x, double y);
 
@@ -82,6 +82,8 @@ class BlockTracer {
     std::vector<std::uint8_t> oldDirty_;     // per old sample
     std::vector<std::uint32_t> oldIndex_;    // open addressing: old sample index + 1, 0 = empty
     std::uint32_t oldMask_ = 0;
+    bool oldIndexed_ = false;                // oldIndex_ holds old_'s samples
+    std::uint32_t nextOld_ = 0;              // the old sample after the last one found
     BlockRecord next_;                       // the record being built for this frame
     std::vector<std::uint8_t> nextFanOf_;    // per segment of next_: its fan
     std::vector<std::pair<std::size_t, std::size_t>> tracedSegments_;  // (first, count) per traced sample
