@@ -24,6 +24,10 @@ void EncodeMemo::SetEnabled(bool enabled) {
         m.out_.shrink_to_fit();
         m.kept_.clear();
         m.kept_.shrink_to_fit();
+        m.spans_.clear();
+        m.spans_.shrink_to_fit();
+        m.spanKept_.clear();
+        m.spanKept_.shrink_to_fit();
     }
 }
 
@@ -38,6 +42,8 @@ EncodeMemo *EncodeMemo::For(const void *image, unsigned width, unsigned height, 
         m.in_.assign(std::size_t(width) * height * 4, 0.0f);
         m.out_.assign(std::size_t(width) * height * 4, 0);
         m.kept_.assign(std::size_t(width) * height, 0);
+        m.spans_.clear();
+        m.spanKept_.assign(std::size_t(m.SpansPerRow()) * height, 0);
     }
     return &m;
 }
@@ -48,6 +54,22 @@ void EncodeMemo::Keep(unsigned x, unsigned y, const float in[4], const unsigned 
     std::memcpy(&in_[i * 4], in, 4 * sizeof(float));
     kept_[i] = 1;
     for (int k = 0; k < 4; ++k) out_[i * 4 + k] = std::uint16_t(out[k]);
+    // Its span's outputs may now be of other inputs than the span KeepSpan saw.
+    spanKept_[std::size_t(y) * SpansPerRow() + x / kSpan] = 0;
+}
+
+bool EncodeMemo::SpanUnchanged(unsigned x0, unsigned y, const float *rgbft) const {
+    if (y >= height_ || x0 >= width_ || x0 % kSpan != 0 || !spanKept_[std::size_t(y) * SpansPerRow() + x0 / kSpan])
+        return false;
+    // Bits, not values, as Find compares.
+    return std::memcmp(&spans_[(std::size_t(y) * width_ + x0) * 5], rgbft, SpanLength(x0) * 5 * sizeof(float)) == 0;
+}
+
+void EncodeMemo::KeepSpan(unsigned x0, unsigned y, const float *rgbft) {
+    if (y >= height_ || x0 >= width_ || x0 % kSpan != 0) return;
+    if (spans_.empty()) spans_.assign(std::size_t(width_) * height_ * 5, 0.0f);
+    std::memcpy(&spans_[(std::size_t(y) * width_ + x0) * 5], rgbft, SpanLength(x0) * 5 * sizeof(float));
+    spanKept_[std::size_t(y) * SpansPerRow() + x0 / kSpan] = 1;
 }
 
 }  // namespace povrayfc

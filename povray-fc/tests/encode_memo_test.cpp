@@ -1,7 +1,9 @@
 // Tests for EncodeMemo: a pixel is found only with bit-identical inputs, for the image and
 // settings it was kept for, and only while the memo is on, on the thread that turned it on.
+#include <algorithm>
 #include <cmath>
 #include <thread>
+#include <vector>
 
 #include <gtest/gtest.h>
 
@@ -35,6 +37,43 @@ TEST(EncodeMemo, FindsOnlyWhatWasKeptForTheSameInputBits) {
     EncodeMemo::For(&image, 4, 3, 7)->Keep(1, 2, in, encoded);
     int other = 0;
     EXPECT_FALSE(EncodeMemo::For(&other, 4, 3, 7)->Find(1, 2, in, out));
+}
+
+TEST(EncodeMemo, ASpanIsUnchangedOnlyWithItsBitsAndNoPixelKeptSince) {
+    EncodeMemo::SetEnabled(true);
+    int image = 0;
+    const unsigned width = EncodeMemo::kSpan + 2;  // spans of kSpan and of 2 pixels
+    EncodeMemo *m = EncodeMemo::For(&image, width, 3, 7);
+    ASSERT_NE(m, nullptr);
+    std::vector<float> row(std::size_t(width) * 5, 0.0f);
+    for (unsigned x = 0; x < width; ++x) row[x * 5] = 0.01f * float(x);
+    const unsigned x0 = EncodeMemo::kSpan;  // the short span at the end
+    EXPECT_FALSE(m->SpanUnchanged(x0, 1, &row[x0 * 5]));  // never kept
+    const unsigned out[4] = {186, 137, 0, 255};
+    for (unsigned x = x0; x < width; ++x) {
+        const float in[4] = {row[x * 5], 0.0f, 0.0f, 1.0f};
+        m->Keep(x, 1, in, out);
+    }
+    m->KeepSpan(x0, 1, &row[x0 * 5]);
+    ASSERT_TRUE(m->SpanUnchanged(x0, 1, &row[x0 * 5]));
+    EXPECT_EQ(m->Outputs(x0 + 1, 1)[0], 186u);
+    EXPECT_FALSE(m->SpanUnchanged(0, 1, &row[0]));        // the other span of the row
+    EXPECT_FALSE(m->SpanUnchanged(x0, 0, &row[x0 * 5]));  // another row
+    EXPECT_FALSE(m->SpanUnchanged(1, 1, &row[5]));        // not a span's start
+    // Invariant: any other bit (here -0 for +0 in the last pixel's transmit) is a change.
+    std::vector<float> other = row;
+    other[width * 5 - 1] = -0.0f;
+    EXPECT_FALSE(m->SpanUnchanged(x0, 1, &other[x0 * 5]));
+    // A pixel kept since (another writer, another value) voids the span until kept again.
+    const float changed[4] = {0.0f, 0.0f, 0.0f, 1.0f};
+    const unsigned black[4] = {0, 0, 0, 255};
+    m->Keep(x0 + 1, 1, changed, black);
+    EXPECT_FALSE(m->SpanUnchanged(x0, 1, &row[x0 * 5]));
+    m->KeepSpan(x0, 1, &row[x0 * 5]);
+    EXPECT_TRUE(m->SpanUnchanged(x0, 1, &row[x0 * 5]));
+    // Other settings reset the spans with the pixels.
+    EXPECT_FALSE(EncodeMemo::For(&image, width, 3, 8)->SpanUnchanged(x0, 1, &row[x0 * 5]));
+    EncodeMemo::SetEnabled(false);
 }
 
 TEST(EncodeMemo, OffOrAnotherThreadMeansNoMemo) {

@@ -13,6 +13,7 @@
 #ifndef POVRAYFC_ENCODE_MEMO_H
 #define POVRAYFC_ENCODE_MEMO_H
 
+#include <cstddef>
 #include <cstdint>
 #include <thread>
 #include <vector>
@@ -38,6 +39,20 @@ class EncodeMemo {
     }
     void Keep(unsigned x, unsigned y, const float in[4], const unsigned out[4]);
 
+    // Spans of kSpan pixels of a row (the last one shorter), for a writer that can read
+    // the image's row as stored (5 floats per pixel: red, green, blue, filter, transmit):
+    // with fc most of a frame is last frame's bit for bit, and one comparison of a span
+    // spares a call, a conversion and a lookup per pixel. True when the span of row y at
+    // x0 (a multiple of kSpan) was kept (KeepSpan, no Keep of its pixels since) with the
+    // very bits at `rgbft` (its first pixel): every Outputs() of it is then what encoding
+    // it gives.
+    static constexpr unsigned kSpan = 32;
+    bool SpanUnchanged(unsigned x0, unsigned y, const float *rgbft) const;
+    // After every pixel of the span was found or kept for its current values.
+    void KeepSpan(unsigned x0, unsigned y, const float *rgbft);
+    // The outputs remembered for pixel (x, y): red, green, blue, alpha.
+    const std::uint16_t *Outputs(unsigned x, unsigned y) const { return &out_[(std::size_t(y) * width_ + x) * 4]; }
+
   private:
     static bool Same(const float *a, const float *b) {
         // Bits, not values: -0 and +0, or two NaNs, need not encode alike.
@@ -54,6 +69,11 @@ class EncodeMemo {
     std::vector<float> in_;            // 4 per pixel
     std::vector<std::uint8_t> kept_;   // per pixel: in_ and out_ hold a value
     std::vector<std::uint16_t> out_;   // 4 per pixel (POV-Ray encodes to at most 16 bits)
+    unsigned SpansPerRow() const { return (width_ + kSpan - 1) / kSpan; }
+    std::size_t SpanLength(unsigned x0) const { return std::size_t(width_ - x0 < kSpan ? width_ - x0 : kSpan); }
+
+    std::vector<float> spans_;           // 5 per pixel, the spans KeepSpan saw (allocated on first use)
+    std::vector<std::uint8_t> spanKept_; // per span: spans_ and out_ hold it
 };
 
 }  // namespace povrayfc
