@@ -329,6 +329,17 @@ TEST_F(FrameCoherenceRun, OffForgetsEverything) {
     EXPECT_EQ(fc.LastStats().fullReason, "first frame");
 }
 
+// Ends a block of the tests that drive the tracer by hand: every pixel black (they check
+// which samples were traced or reused, not pixels).
+void EndBlockInBlack(BlockTracer &tracer) {
+    for (int y = 0; y < kBlock; ++y)
+        for (int x = 0; x < kBlock; ++x) {
+            const float c[5] = {0, 0, 0, 0, 0};
+            tracer.SetPixel(x, y, c);
+        }
+    tracer.End();
+}
+
 }  // namespace
 }  // namespace povrayfc
 
@@ -365,12 +376,7 @@ TEST_F(FrameCoherenceRun, UnboundedLooseRayNotHeldByTheLooseBoxStillSeesAChange)
                     tracer.EndSample(x, y, c);
                     ++traced;
                 }
-            for (int y = 0; y < kBlock; ++y)
-                for (int x = 0; x < kBlock; ++x) {
-                    const float c[5] = {0, 0, 0, 0, 0};
-                    tracer.SetPixel(x, y, c);
-                }
-            tracer.End();
+            EndBlockInBlack(tracer);
         }
         fc.EndFrame(0);
         return traced;
@@ -486,12 +492,7 @@ TEST_F(FrameCoherenceRun, ReplayReusesCleanSamplesAskedInAnyOrder) {
                 tracer.EndSample(x, y, c);
                 ++traced;
             }
-            for (int y = 0; y < kBlock; ++y)
-                for (int x = 0; x < kBlock; ++x) {
-                    const float c[5] = {0, 0, 0, 0, 0};
-                    tracer.SetPixel(x, y, c);
-                }
-            tracer.End();
+            EndBlockInBlack(tracer);
         }
         fc.EndFrame(0);
         return traced;
