@@ -34,7 +34,7 @@ void GrowRecordFans(BlockRecord &record, const std::vector<BlockFans> &oldGroups
     record.groupFans.reserve(oldGroups.size());
     for (std::size_t g = 0; g < oldGroups.size(); ++g)
         record.groupFans.push_back(
-            GrowFansOf(oldGroups[g], record.segments.data(), record.fanOf.data(), record.apexes, addedTo[g]));
+            GrowFans(oldGroups[g], record.segments.data(), record.fanOf.data(), record.apexes, addedTo[g]));
     record.fans = MergeFans(record.groupFans, record.apexes);
     record.fansBuilt = true;
 }

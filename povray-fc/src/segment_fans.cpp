@@ -184,10 +184,9 @@ BlockFans FansOfMembers(const Segment *segments, const FanApexes &apexes,
 
 BlockFans BuildFans(const Segment *segments, std::vector<std::uint8_t> &fanOf, const FanApexes &apexes) {
     ValidateFanNumbers(fanOf, apexes);
-    std::vector<std::vector<std::uint32_t>> members(std::size_t(apexes.count) + 1);
-    for (std::size_t i = 0; i < fanOf.size(); ++i)
-        members[std::min<std::size_t>(fanOf[i], std::size_t(apexes.count))].push_back(std::uint32_t(i));
-    return FansOfMembers(segments, apexes, members);
+    std::vector<std::uint32_t> all(fanOf.size());
+    for (std::size_t i = 0; i < all.size(); ++i) all[i] = std::uint32_t(i);
+    return BuildFansOf(segments, fanOf.data(), apexes, all);
 }
 
 BlockFans BuildFansOf(const Segment *segments, const std::uint8_t *fanOf, const FanApexes &apexes,
@@ -252,14 +251,8 @@ BlockFans MergeFans(const std::vector<BlockFans> &parts, const FanApexes &apexes
     return merged;
 }
 
-BlockFans GrowFans(const BlockFans &old, const Segment *segments, std::vector<std::uint8_t> &fanOf,
+BlockFans GrowFans(const BlockFans &old, const Segment *segments, const std::uint8_t *fanOf,
                    const FanApexes &apexes, const std::vector<std::pair<std::size_t, std::size_t>> &added) {
-    ValidateFanNumbers(fanOf, apexes);
-    return GrowFansOf(old, segments, fanOf.data(), apexes, added);
-}
-
-BlockFans GrowFansOf(const BlockFans &old, const Segment *segments, const std::uint8_t *fanOf,
-                     const FanApexes &apexes, const std::vector<std::pair<std::size_t, std::size_t>> &added) {
     BlockFans fans;
     fans.fans = old.fans;
     fans.looseBox = old.looseBox;

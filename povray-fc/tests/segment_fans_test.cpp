@@ -271,7 +271,8 @@ TEST(SegmentFans, GrowingAFanKeepsHoldingItsSegments) {
             const double o[3] = {s.origin[0], s.origin[1], s.origin[2]};
             a.fanOf[i] = a.apexes.OriginFan(o);
         }
-        const BlockFans grown = GrowFans(fans, a.segments.data(), a.fanOf, a.apexes, {{first, a.segments.size() - first}});
+        ValidateFanNumbers(a.fanOf, a.apexes);
+        const BlockFans grown = GrowFans(fans, a.segments.data(), a.fanOf.data(), a.apexes, {{first, a.segments.size() - first}});
         const std::vector<std::uint8_t> &fanOf = a.fanOf;
         for (int k = 0; k < 100; ++k) {
             const Vec3 lo{pos(rng), pos(rng) * 0.5 + 5, pos(rng)};

@@ -75,7 +75,7 @@ inline bool InLooseBox(const Segment &s) { return s.length < 1e9f; }
 // recording; numbers without an apex are made kLoose) and the fans' apexes.
 BlockFans BuildFans(const Segment *segments, std::vector<std::uint8_t> &fanOf, const FanApexes &apexes);
 
-// Makes every fan number without an apex in `apexes` kLoose (BuildFans and GrowFans do).
+// Makes every fan number without an apex in `apexes` kLoose (BuildFans does).
 void ValidateFanNumbers(std::vector<std::uint8_t> &fanOf, const FanApexes &apexes);
 
 // The cones of some of the segments (`indices`), whose `fanOf` is valid: a group of a
@@ -83,15 +83,12 @@ void ValidateFanNumbers(std::vector<std::uint8_t> &fanOf, const FanApexes &apexe
 BlockFans BuildFansOf(const Segment *segments, const std::uint8_t *fanOf, const FanApexes &apexes,
                       const std::vector<std::uint32_t> &indices);
 
-// The fans of a replayed block, cheaply: `old` were the fans of the segments it kept, and
-// the segments in `added` (first index, count) were traced anew; each fan only widens to
-// hold its new members. (Cones then never narrow: the caller rebuilds from scratch when
-// much of a block is new.)
-BlockFans GrowFans(const BlockFans &old, const Segment *segments, std::vector<std::uint8_t> &fanOf,
+// The fans of a replayed block (or group), cheaply: `old` were the fans of the segments it
+// kept, and the segments in `added` (first index, count) were traced anew; each fan only
+// widens to hold its new members. (Cones then never narrow: the caller rebuilds from
+// scratch when much of a block is new.) `fanOf` must be valid (ValidateFanNumbers).
+BlockFans GrowFans(const BlockFans &old, const Segment *segments, const std::uint8_t *fanOf,
                    const FanApexes &apexes, const std::vector<std::pair<std::size_t, std::size_t>> &added);
-// The same for a group's fans, with a valid `fanOf`.
-BlockFans GrowFansOf(const BlockFans &old, const Segment *segments, const std::uint8_t *fanOf,
-                     const FanApexes &apexes, const std::vector<std::pair<std::size_t, std::size_t>> &added);
 
 // Cones that hold every segment the cones of `parts` hold (for each fan, and the loose
 // box and unbounded cone): a block's from its groups', without a pass over the segments.
