@@ -97,9 +97,8 @@ bool BlockTracer::Begin(std::uint32_t serial, int left, int top, int right, int 
         oldDirty_.resize(n);
         for (std::size_t i = 0; i < n; ++i) {
             const StoredSample &s = old_->samples[i];
-            const std::size_t g = old_->GroupOf(s.x, s.y);
             oldDirty_[i] = s.segmentCount == StoredSample::kEverything ||
-                           (groupReaches_[g] && SampleIsDirty(s, *old_, *plan.changes, groupReach_[g]));
+                           (groupReaches_[s.group] && SampleIsDirty(s, *old_, *plan.changes, groupReach_[s.group]));
             anyDirty |= oldDirty_[i] != 0;
         }
     }
@@ -201,6 +200,7 @@ void BlockTracer::EndSample(double x, double y, const float rgbft[5]) {
     StoredSample s;
     s.x = x;
     s.y = y;
+    s.group = std::uint32_t(next_.GroupOf(x, y));
     std::copy(rgbft, rgbft + 5, s.colour);
     if (recorder_.Everything()) {
         recorder_.Discard();  // its segments say nothing
@@ -209,7 +209,7 @@ void BlockTracer::EndSample(double x, double y, const float rgbft[5]) {
         s.firstSegment = std::uint32_t(recorder_.First());
         s.segmentCount = std::uint32_t(recorder_.Count());
         tracedSegments_.emplace_back(recorder_.First(), recorder_.Count());
-        tracedGroups_.push_back(std::uint32_t(next_.GroupOf(x, y)));
+        tracedGroups_.push_back(s.group);
     }
     next_.samples.push_back(s);
 }

@@ -11,7 +11,7 @@ void BuildRecordFans(BlockRecord &record) {
     for (std::vector<std::uint32_t> &m : members) m.clear();
     for (const StoredSample &s : record.samples) {
         if (s.segmentCount == StoredSample::kEverything) continue;
-        std::vector<std::uint32_t> &m = members[record.GroupOf(s.x, s.y)];
+        std::vector<std::uint32_t> &m = members[s.group];
         for (std::uint32_t k = 0; k < s.segmentCount; ++k) m.push_back(s.firstSegment + k);
     }
     record.groupFans.clear();

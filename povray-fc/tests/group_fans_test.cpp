@@ -102,6 +102,7 @@ BlockRecord RecordBlock(const Scene &scene, int left, int top, std::mt19937_64 &
             StoredSample s;
             s.x = x;
             s.y = y;
+            s.group = std::uint32_t(record.GroupOf(x, y));
             s.firstSegment = std::uint32_t(recorder.First());
             s.segmentCount = std::uint32_t(recorder.Count());
             record.samples.push_back(s);
@@ -190,7 +191,7 @@ TEST(GroupFans, GrownGroupsHoldTheSamplesTracedAnew) {
             s.firstSegment = std::uint32_t(recorder.First());
             s.segmentCount = std::uint32_t(recorder.Count());
             added.emplace_back(recorder.First(), recorder.Count());
-            addedGroup.push_back(std::uint32_t(record.GroupOf(s.x, s.y)));
+            addedGroup.push_back(s.group);
         }
         const std::vector<BlockFans> oldGroups = record.groupFans;
         GrowRecordFans(record, oldGroups, added, addedGroup);

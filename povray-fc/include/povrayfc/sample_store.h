@@ -33,7 +33,12 @@ struct StoredSample {
     double x = 0, y = 0;  // position in the image, as POV-Ray traced it: the sample's key
     float colour[5] = {0, 0, 0, 0, 0};  // red, green, blue, filter, transmit
     std::uint32_t firstSegment = 0, segmentCount = 0;
+    // BlockRecord::GroupOf(x, y), worked out once when the sample is recorded: the test of
+    // a block's samples against a frame's changes reads it for every sample. It fills what
+    // was padding.
+    std::uint32_t group = 0;
 };
+static_assert(sizeof(StoredSample) == 48, "StoredSample grew: the store's size per pixel counts it");
 
 struct BlockRecord {
     int left = 0, top = 0, right = -1, bottom = -1;  // inclusive
