@@ -180,8 +180,14 @@ public:
 
 private:
     static std::uint64_t Finish(std::uint64_t h) { return HashFinalize64(h ^ 0x5bd1e9955bd1e995ULL); }
+    // One word into a running hash: xxHash64's round (a bijection of h for any word, and of
+    // the word for any h, so no single changed word goes unseen). The full avalanche is left
+    // to Finish, once per scope: a parse mixes some words per token, and a finaliser per word
+    // was most of what hashing added to it.
     static std::uint64_t Mix(std::uint64_t h, std::uint64_t word) {
-        return HashFinalize64(h + word * 0x9e3779b97f4a7c15ULL + 0x632be59bd9b4e019ULL);
+        h += word * 0xc2b2ae3d27d4eb4fULL;
+        h = (h << 31) | (h >> 33);
+        return h * 0x9e3779b185ebca87ULL;
     }
 
     struct Scope {
