@@ -55,8 +55,7 @@ bool BlockTracer::Begin(std::uint32_t serial, int left, int top, int right, int 
     next_.segments.clear();
     next_.apexes.Clear();
     nextFanOf_.clear();
-    tracedSegments_.clear();
-    tracedGroups_.clear();
+    keptFromOld_.clear();
     const std::size_t area = std::size_t(right - left + 1) * std::size_t(bottom - top + 1);
     next_.pixels.assign(area * 5, 0.0f);
     tracedPixels_.assign(area, 0);
@@ -169,18 +168,9 @@ bool BlockTracer::Reuse(double x, double y, float rgbft[5]) {
     if (!FindOld(x, y, i) || oldDirty_[i]) return false;
     const StoredSample &s = old_->samples[i];
     std::copy(s.colour, s.colour + 5, rgbft);
-    StoredSample kept = s;
-    if (s.segmentCount != StoredSample::kEverything) {
-        kept.firstSegment = std::uint32_t(next_.segments.size());
-        const Segment *first = old_->segments.data() + s.firstSegment;
-        next_.segments.insert(next_.segments.end(), first, first + s.segmentCount);
-        // Recorded fans keep their numbers (the new record starts from the old apexes);
-        // the leftover fan is built anew at End.
-        const std::uint8_t *fans = old_->fanOf.data() + s.firstSegment;
-        for (std::uint32_t k = 0; k < s.segmentCount; ++k)
-            nextFanOf_.push_back(fans[k] < old_->apexes.count ? fans[k] : BlockFans::kLoose);
-    }
-    next_.samples.push_back(kept);
+    // Its segments stay in old_ until End gathers the new record's (one copy, not two).
+    next_.samples.push_back(s);
+    keptFromOld_.push_back(1);
     ++reusedSamples_;
     return true;
 }
@@ -208,10 +198,9 @@ void BlockTracer::EndSample(double x, double y, const float rgbft[5]) {
     } else {
         s.firstSegment = std::uint32_t(recorder_.First());
         s.segmentCount = std::uint32_t(recorder_.Count());
-        tracedSegments_.emplace_back(recorder_.First(), recorder_.Count());
-        tracedGroups_.push_back(s.group);
     }
     next_.samples.push_back(s);
+    keptFromOld_.push_back(0);
 }
 
 void BlockTracer::MarkTraced(double x, double y) {
@@ -284,11 +273,10 @@ void BlockTracer::End() {
     record->bottom = next_.bottom;
     record->opaque = next_.opaque;
     record->samples.assign(next_.samples.begin(), next_.samples.end());
-    record->segments.assign(next_.segments.begin(), next_.segments.end());
     record->pixels.assign(next_.pixels.begin(), next_.pixels.end());
     if (record_) {
         record->apexes = next_.apexes;
-        record->fanOf.assign(nextFanOf_.begin(), nextFanOf_.end());
+        GatherSegments(*record);
         // Grow the old cones by what was traced anew, unless much of the block is new
         // (cones only ever widen when grown); otherwise they are built when needed.
         std::size_t fresh = 0;
@@ -303,6 +291,38 @@ void BlockTracer::End() {
     plan.store->Put(serial_, std::move(record));
     active_ = false;
     endedActive_ = true;
+}
+
+void BlockTracer::GatherSegments(BlockRecord &record) {
+    std::size_t total = 0;
+    for (const StoredSample &s : record.samples)
+        if (s.segmentCount != StoredSample::kEverything) total += s.segmentCount;
+    record.segments.reserve(total);
+    record.fanOf.reserve(total);
+    tracedSegments_.clear();
+    tracedGroups_.clear();
+    for (std::size_t i = 0; i < record.samples.size(); ++i) {
+        StoredSample &s = record.samples[i];
+        if (s.segmentCount == StoredSample::kEverything) continue;
+        const std::size_t at = record.segments.size();
+        if (keptFromOld_[i]) {
+            const Segment *first = old_->segments.data() + s.firstSegment;
+            record.segments.insert(record.segments.end(), first, first + s.segmentCount);
+            // Recorded fans keep their numbers (the new record starts from the old apexes);
+            // the leftover fan is built anew.
+            const std::uint8_t *fans = old_->fanOf.data() + s.firstSegment;
+            for (std::uint32_t k = 0; k < s.segmentCount; ++k)
+                record.fanOf.push_back(fans[k] < old_->apexes.count ? fans[k] : BlockFans::kLoose);
+        } else {
+            const Segment *first = next_.segments.data() + s.firstSegment;
+            record.segments.insert(record.segments.end(), first, first + s.segmentCount);
+            const std::uint8_t *fans = nextFanOf_.data() + s.firstSegment;
+            record.fanOf.insert(record.fanOf.end(), fans, fans + s.segmentCount);
+            tracedSegments_.emplace_back(at, s.segmentCount);
+            tracedGroups_.push_back(s.group);
+        }
+        s.firstSegment = std::uint32_t(at);
+    }
 }
 
 bool BlockTracer::ChangedRect(int &left, int &top, int &right, int &bottom) const {

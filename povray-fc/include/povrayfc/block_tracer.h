@@ -72,6 +72,10 @@ class BlockTracer {
     bool FindOld(double x, double y, std::uint32_t &index);
     void IndexOldSamples();
     void MarkTraced(double x, double y);
+    // The new record's segments and fan numbers in its samples' order, each copied once:
+    // a reused sample's from old_, a traced one's from next_; fills tracedSegments_ and
+    // tracedGroups_ in the record's numbering.
+    void GatherSegments(BlockRecord &record);
 
     const FramePlan *plan_;
     bool active_ = false;   // this block is under fc (mode != kIdle)
@@ -86,7 +90,8 @@ class BlockTracer {
     std::uint32_t nextOld_ = 0;              // the old sample after the last one found
     BlockRecord next_;                       // the record being built for this frame
     std::vector<std::uint8_t> nextFanOf_;    // per segment of next_: its fan
-    std::vector<std::pair<std::size_t, std::size_t>> tracedSegments_;  // (first, count) per traced sample
+    std::vector<std::uint8_t> keptFromOld_;  // per sample of next_: reused (its segments are old_'s)
+    std::vector<std::pair<std::size_t, std::size_t>> tracedSegments_;  // (first, count) per traced sample, in the new record
     std::vector<std::uint32_t> tracedGroups_;  // per traced sample: its group (BlockRecord::GroupOf)
     std::vector<BlockHulls> groupReach_;       // per group of old_: the changes it may reach
     std::vector<std::uint8_t> groupReaches_;   // per group of old_: groupReach_[g].Any()
