@@ -305,19 +305,14 @@ void BlockTracer::GatherSegments(BlockRecord &record) {
         StoredSample &s = record.samples[i];
         if (s.segmentCount == StoredSample::kEverything) continue;
         const std::size_t at = record.segments.size();
-        if (keptFromOld_[i]) {
-            const Segment *first = old_->segments.data() + s.firstSegment;
-            record.segments.insert(record.segments.end(), first, first + s.segmentCount);
-            // Recorded fans keep their numbers (the new record starts from the old apexes);
-            // the leftover fan is built anew.
-            const std::uint8_t *fans = old_->fanOf.data() + s.firstSegment;
-            for (std::uint32_t k = 0; k < s.segmentCount; ++k)
-                record.fanOf.push_back(fans[k] < old_->apexes.count ? fans[k] : BlockFans::kLoose);
-        } else {
-            const Segment *first = next_.segments.data() + s.firstSegment;
-            record.segments.insert(record.segments.end(), first, first + s.segmentCount);
-            const std::uint8_t *fans = nextFanOf_.data() + s.firstSegment;
-            record.fanOf.insert(record.fanOf.end(), fans, fans + s.segmentCount);
+        // Reused segments keep their fan numbers: the new record starts from the old apexes,
+        // and a record is reused from only once its fans are built (its numbers valid).
+        const bool kept = keptFromOld_[i] != 0;
+        const Segment *first = (kept ? old_->segments.data() : next_.segments.data()) + s.firstSegment;
+        const std::uint8_t *fans = (kept ? old_->fanOf.data() : nextFanOf_.data()) + s.firstSegment;
+        record.segments.insert(record.segments.end(), first, first + s.segmentCount);
+        record.fanOf.insert(record.fanOf.end(), fans, fans + s.segmentCount);
+        if (!kept) {
             tracedSegments_.emplace_back(at, s.segmentCount);
             tracedGroups_.push_back(s.group);
         }
