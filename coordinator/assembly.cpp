@@ -130,7 +130,7 @@ void FrameAssembly::remove_stale_temps() const
 
 bool FrameAssembly::put(int index, const std::vector<Rect> &rects, const std::vector<char> &keep,
                         const std::string &encoding, const std::vector<uint8_t> &data,
-                        std::string &err)
+                        const std::vector<uint8_t> &file, std::string &err)
 {
     size_t pixels = 0;
     for (const Rect &r : rects) {
@@ -154,9 +154,16 @@ bool FrameAssembly::put(int index, const std::vector<Rect> &rects, const std::ve
         return false;
     }
     size_t sample = pixel_type_bytes(format_.pixels);
+    bool first = frames_in_flight_.count(index) == 0;
     Pending &p = frames_in_flight_[index];
     if (p.samples.empty())
         p.samples.assign(size_t(width_) * size_t(height_) * 3 * sample, 0);
+    // POV-Ray's file stands for the frame only when this one result brought all of it.
+    bool whole = first && rects.size() == 1 && keep[0] && rects[0] == Rect{0, 0, width_, height_};
+    if (whole)
+        p.file = file;
+    else
+        p.file.clear();
     if (floats && p.values.empty()) {
         p.quantizer.reset(new Quantizer);
         if (!p.quantizer->parse(data.data() + pixels * 12, data.size() - pixels * 12, err))
@@ -190,6 +197,12 @@ bool FrameAssembly::put(int index, const std::vector<Rect> &rects, const std::ve
     return true;
 }
 
+bool FrameAssembly::needs_encoding(int index) const
+{
+    auto it = frames_in_flight_.find(index);
+    return it == frames_in_flight_.end() || it->second.file.empty();
+}
+
 bool FrameAssembly::write(int index, std::vector<uint8_t> &samples, bool &disk_full,
                           std::string &err)
 {
@@ -203,8 +216,10 @@ bool FrameAssembly::write(int index, std::vector<uint8_t> &samples, bool &disk_f
     if (!p.values.empty())
         p.quantizer->dither(p.values, width_, height_, p.samples);
     std::vector<uint8_t> bytes;
-    if (!encode_image(format_.oiio, format_.compression, width_, height_, format_.pixels,
-                      p.samples.data(), bytes, err))
+    if (!p.file.empty())
+        bytes.swap(p.file);
+    else if (!encode_image(format_.oiio, format_.compression, width_, height_, format_.pixels,
+                           p.samples.data(), bytes, err))
         return false;
     std::string tmp = temp_path(index), dst = final_path(index);
     if (!write_file_durably(tmp, bytes.data(), bytes.size(), err)) {

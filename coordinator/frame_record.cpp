@@ -43,8 +43,9 @@ size_t bytes_per_pixel(const std::string &encoding)
 }
 
 bool parse_record_header(const std::string &line, FrameRecord &rec, size_t &payload_bytes,
-                         std::string &err)
+                         size_t &file_bytes, std::string &err)
 {
+    file_bytes = 0;
     std::istringstream words(line);
     std::string magic, version, w;
     if (!(words >> magic >> version) || magic != "FCFRAME" || version != "1") {
@@ -85,6 +86,12 @@ bool parse_record_header(const std::string &line, FrameRecord &rec, size_t &payl
             }
             payload_bytes = size_t(v);
             have_bytes = true;
+        } else if (key == "file") {
+            if (v < 0 || v > double(kMaxPayload)) {
+                err = "frame record file size out of range: " + value;
+                return false;
+            }
+            file_bytes = size_t(v);
         } else if (key == "rects") {
             int n = int(v);
             for (int i = 0; i < n; i++) {
@@ -142,13 +149,15 @@ int FrameRecordReader::next(FrameRecord &rec, std::string &err)
         }
         return 0;
     }
-    size_t payload = 0;
-    if (!parse_record_header(buf_.substr(pos_, nl - pos_), rec, payload, err))
+    size_t payload = 0, file = 0;
+    if (!parse_record_header(buf_.substr(pos_, nl - pos_), rec, payload, file, err))
         return -1;
-    if (buf_.size() - (nl + 1) < payload)
+    if (buf_.size() - (nl + 1) < payload + file)
         return 0;
-    rec.data.assign(buf_.begin() + long(nl + 1), buf_.begin() + long(nl + 1 + payload));
-    pos_ = nl + 1 + payload;
+    auto start = buf_.begin() + long(nl + 1);
+    rec.data.assign(start, start + long(payload));
+    rec.file.assign(start + long(payload), start + long(payload + file));
+    pos_ = nl + 1 + payload + file;
     return 1;
 }
 

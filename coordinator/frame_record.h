@@ -9,6 +9,9 @@
 // the encodings of other output formats: rgb16 (3 little-endian 16-bit words a pixel, as the
 // PNG writer stores 9 to 16 bits) and rgbl (3 little-endian floats a pixel, the linear values
 // the OpenEXR writer converts to half); rgb8 also carries PNG's 5 to 8 bits as it stores them.
+// Patch 0034: a record of the whole image in Targa or PNG says file=F and carries, after the
+// pixels, the F bytes of the file the format's writer makes of the frame (as one POV-Ray
+// process would write it).
 #pragma once
 
 #include <cstdint>
@@ -25,7 +28,8 @@ struct FrameRecord {
     double parse_seconds = 0, trace_seconds = 0;
     std::string encoding;           // "rgb8", "rgb16", "rgbl" or "rgbf"
     std::vector<Rect> rects;
-    std::vector<uint8_t> data;      // the payload, as sent
+    std::vector<uint8_t> data;      // the pixels, as sent
+    std::vector<uint8_t> file;      // the frame's image file (whole-image records), or empty
 };
 
 // Incremental reader: feed it the bytes read from the channel, take complete records out.
@@ -46,10 +50,11 @@ private:
 // Bytes a pixel takes in an encoding (rgbf: without its quantizer); 0 for an unknown one.
 size_t bytes_per_pixel(const std::string &encoding);
 
-// Parse one header line (without its newline) into record (all but data); payload_bytes is
-// the size of the data that follows. Returns false with err on a malformed header.
+// Parse one header line (without its newline) into record (all but data and file);
+// payload_bytes is the size of the pixels that follow, file_bytes that of the file after them.
+// Returns false with err on a malformed header.
 bool parse_record_header(const std::string &line, FrameRecord &record, size_t &payload_bytes,
-                         std::string &err);
+                         size_t &file_bytes, std::string &err);
 
 // The frame-control line that asks the renderer for frame `frame` restricted to rects
 // (none = the whole render area), with its newline.

@@ -112,6 +112,13 @@ bool image_io_loading()
     return plugin().loading;
 }
 
+bool image_io_ready()
+{
+    Plugin &p = plugin();
+    std::lock_guard<std::mutex> lock(p.mutex);
+    return p.started && !p.loading;
+}
+
 void wait_image_io()
 {
     Plugin &p = plugin();

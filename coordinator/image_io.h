@@ -23,6 +23,9 @@ void preload_image_io();
 // Whether that background load still runs: a call below would wait for it.
 bool image_io_loading();
 
+// Whether the plugin was loaded (or failed to load): a call below would not wait.
+bool image_io_ready();
+
 // Wait for the background load to end. Call before the process exits: exit handlers that
 // run while the load is under way abort in OpenImageIO's own destructors (an assertion in
 // unordered_map_concurrent.h, seen when a render failed at once).

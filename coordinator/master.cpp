@@ -327,11 +327,15 @@ void Master::on_frame(int src)
         sched_->set_fresh_cost((fresh_seconds_ / fresh_pixels_) /
                                ((savings_.seconds_spent - fresh_seconds_) / coherent_pixels));
     if (!fresh.empty()) {
+        // A result without POV-Ray's file of the frame is encoded here: OpenImageIO loads in
+        // the background meanwhile (sequence division did not load it at the start).
+        if (fr.file.empty())
+            preload_image_io();
         std::vector<char> keep(fr.tiles.size(), 0);
         for (size_t k = 0; k < fr.tiles.size(); k++)
             keep[k] = std::find(fresh.begin(), fresh.end(), fr.tiles[k]) != fresh.end();
         std::string err;
-        if (!assembly_->put(idx, fr.rects, keep, fr.encoding, fr.data, err)) {
+        if (!assembly_->put(idx, fr.rects, keep, fr.encoding, fr.data, fr.file, err)) {
             fatal(strf("frame %d from host %s: %s", fr.frame, host.c_str(), err.c_str()));
             return;
         }

@@ -116,6 +116,12 @@ bool Preview::flush(double now, bool force, std::string &err)
     if (!on_ || !dirty_ || (!force && (now < first_ || now - last_ < wait_)) ||
         (force && !written_ && now < first_))
         return true;
+    // A render whose frames came whole from POV-Ray may not have OpenImageIO yet: it loads
+    // in the background (0.4 s of CPU), and the files are written at a later call.
+    if (!force && !image_io_ready()) {
+        preload_image_io();
+        return true;
+    }
     if (!written_ && !make_dirs(dir_, err)) {   // made at the first write: none before
         on_ = false;
         return false;

@@ -84,6 +84,7 @@ struct FrameResult {
     int fresh = 0;                      // the renderer's first frame (fc traced everything)
     std::string encoding;               // "rgb8": 3 bytes a pixel; "rgbf": see dither.h
     std::vector<uint8_t> data;          // the rectangles in order, rows top first
+    std::vector<uint8_t> file;          // a whole frame's image file as POV-Ray wrote it, or empty
 };
 
 struct Progress {

@@ -224,6 +224,7 @@ bool Slave::send_frame(const FrameRecord &rec)
     fr.fresh = renderer_.fresh_frame() ? 1 : 0;
     fr.encoding = rec.encoding;
     fr.data = rec.data;
+    fr.file = rec.file;
     int r = send_msg(master_, FC_FRAME, fr);
     if (r < 0) {
         g_stop = 1;     // the master is unreachable

@@ -22,8 +22,9 @@ def povray(args, tmp_path):
                           stdin=subprocess.DEVNULL)
 
 
-def records(path):
-    """[(fields, rects, payload)] of a frame channel file."""
+def records(path, with_files=False):
+    """[(fields, rects, payload)] of a frame channel file; with_files, (fields, rects,
+    payload, file): file is the image file a whole-image record carries (patch 0034), or None."""
     data = path.read_bytes()
     out, pos = [], 0
     while pos < len(data):
@@ -39,19 +40,21 @@ def records(path):
             else:
                 fields[key] = value
             i += 1
-        size = int(fields["bytes"])
-        out.append((fields, rects, data[nl + 1:nl + 1 + size]))
-        pos = nl + 1 + size
+        size, file_size = int(fields["bytes"]), int(fields.get("file", 0))
+        payload = data[nl + 1:nl + 1 + size]
+        file = data[nl + 1 + size:nl + 1 + size + file_size] if "file" in fields else None
+        out.append((fields, rects, payload, file) if with_files else (fields, rects, payload))
+        pos = nl + 1 + size + file_size
     return out
 
 
-def reference(tmp_path, options):
+def reference(tmp_path, options, ext=".tga"):
     """A plain render of the same frames: {frame: pixels}."""
     ref = tmp_path / "ref"
     ref.mkdir(exist_ok=True)
     r = povray(ANIMATION + options + [f"+O{ref}/f"], tmp_path)
     assert r.returncode == 0, r.stderr
-    return {n: read_pixels(ref / f"f{n}.tga")[:, :, :3] for n in range(1, 5)}
+    return {n: read_pixels(ref / f"f{n}{ext}")[:, :, :3] for n in range(1, 5)}
 
 
 def assert_rectangles_equal(fields, rects, payload, ref):
@@ -109,6 +112,31 @@ def test_frame_coherence_rectangle_left_out_then_back(tmp_path, options):
     # rendered here.
     for fields, rects, payload in recs:
         assert_rectangles_equal(fields, rects, payload, ref)
+
+
+@pytest.mark.parametrize("options,ext", [([], ".tga"), (["+FC"], ".tga"), (["+FN"], ".png"),
+                                         (["Frame_Coherence=on"], ".tga"),
+                                         (["+FN", "Frame_Coherence=on"], ".png")],
+                         ids=["targa", "rle-targa", "png", "targa-fc", "png-fc"])
+def test_whole_image_records_carry_the_file(tmp_path, options, ext):
+    # A record of the whole image carries the file POV-Ray's writer makes of the frame, after
+    # the pixels (patch 0034); a record of rectangles carries none. With fc the file's
+    # encoding shares the memo of encoded pixels with the record's: both must stay exact.
+    options = ["+A0.1", "+AM1"] + options
+    r = channel_render(tmp_path, options, "render 1\nrender 2 0,0,32,32\nrender 3\nrender 4\n")
+    assert r.returncode == 0, r.stderr
+    recs = records(tmp_path / "channel", with_files=True)
+    ref = reference(tmp_path, options, ext)
+    assert [int(f["frame"]) for f, _, _, _ in recs] == [1, 2, 3, 4]
+    assert recs[1][3] is None and "file" not in recs[1][0]
+    for fields, rects, payload, file in recs:
+        assert_rectangles_equal(fields, rects, payload, ref)
+        if rects != [(0, 0, 160, 120)]:
+            continue
+        assert file, fields
+        path = tmp_path / f"record{fields['frame']}{ext}"
+        path.write_bytes(file)
+        assert np.array_equal(read_pixels(path)[:, :, :3], ref[int(fields["frame"])]), fields
 
 
 def test_fewer_rays_for_fewer_rectangles(tmp_path):
