@@ -307,6 +307,11 @@ void Master::on_frame(int src)
     for (const Rect &r : fr.rects)
         pixels += double(r.area());
     hs.pixels += pixels;
+    // With fc, a renderer's frame after one it did not render before it (a jump to another
+    // range) is coherent with an older frame: neither fresh nor a measure of coherent speed.
+    auto last = last_index_.find(src);
+    bool jump = opt_.fc && !fr.fresh && last != last_index_.end() && idx != last->second + 1;
+    last_index_[src] = idx;
     if (opt_.fc) {
         // What fc saved: its first frame in a renderer is traced in full, the yardstick.
         savings_.rays_spent += std::max(0.0, fr.rays);
@@ -317,15 +322,24 @@ void Master::on_frame(int src)
             fresh_seconds_ += fr.trace_seconds;
             fresh_pixels_ += pixels;
         }
+        if (jump) {
+            jump_seconds_ += fr.trace_seconds;
+            jump_pixels_ += pixels;
+        }
     }
     // A fresh renderer with frame coherence traced and recorded everything: no measure of
     // the slave's speed on coherent frames.
-    if (!(fr.fresh && opt_.fc))
+    if (!(fr.fresh && opt_.fc) && !jump)
         sched_->note_speed(src, pixels, seconds);
-    double coherent_pixels = pixels_traced_ - fresh_pixels_;
-    if (fresh_pixels_ > 0 && coherent_pixels > 0 && savings_.seconds_spent > fresh_seconds_)
-        sched_->set_fresh_cost((fresh_seconds_ / fresh_pixels_) /
-                               ((savings_.seconds_spent - fresh_seconds_) / coherent_pixels));
+    double coherent_pixels = pixels_traced_ - fresh_pixels_ - jump_pixels_;
+    double coherent_seconds = savings_.seconds_spent - fresh_seconds_ - jump_seconds_;
+    if (coherent_pixels > 0 && coherent_seconds > 0) {
+        double coherent = coherent_seconds / coherent_pixels;
+        if (fresh_pixels_ > 0)
+            sched_->set_fresh_cost((fresh_seconds_ / fresh_pixels_) / coherent);
+        if (jump_pixels_ > 0)
+            sched_->set_jump_cost((jump_seconds_ / jump_pixels_) / coherent);
+    }
     if (!fresh.empty()) {
         // A result without POV-Ray's file of the frame is encoded here: OpenImageIO loads in
         // the background meanwhile (sequence division did not load it at the start).

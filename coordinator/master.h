@@ -105,6 +105,10 @@ private:
     std::string last_failure_;          // the last host-side failure ("on HOST: message")
     Savings savings_;                   // what fc saved (rays and trace time spent so far)
     double fresh_rays_ = 0, fresh_seconds_ = 0, fresh_pixels_ = 0, pixels_traced_ = 0;
+    // Frames a renderer rendered after jumping over others (sequence division's splits): not
+    // fresh, not coherent with the frame before; and each slave's last frame index.
+    double jump_seconds_ = 0, jump_pixels_ = 0;
+    std::map<int, int> last_index_;
     std::string vm_kind_ = "none";      // "private" or "running" once started
     int resumed_ = 0, rendered_ = 0;
     long cells_total_ = 0;

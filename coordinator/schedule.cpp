@@ -122,6 +122,9 @@ int Schedule::add_job(int slave, int index, const std::vector<int> &tiles, int r
     j.slave = slave;
     j.range = range;
     j.started = t;
+    auto known = slaves_.find(slave);
+    if (known != slaves_.end())
+        known->second.last = std::max(known->second.last, index);
     // A slave renders its jobs in the order it got them: the first is being rendered now.
     if (live_jobs(slave) == 0)
         j.rendering = t;
@@ -540,6 +543,29 @@ const Job *Schedule::take_from_range(int slave, double t)
 // Give a slave without a range one: an abandoned range first, then (frame division) the
 // range with the most work per member to join, else the later half of the range with the
 // most work per member.
+int Schedule::split_take(const Range &r, int slave) const
+{
+    const SlaveState &s = slaves_.at(slave);
+    int left = r.hi - r.frontier + 1;
+    if (left < 2 || r.members.empty())
+        return 0;
+    // The newcomer takes n of the left frames: its first one costs `first` frames (fresh, or
+    // less for a renderer that jumps forward with its samples). At speeds u (newcomer) and v
+    // (the range's slave), in frames a second, both finish together when (first + n - 1) / u
+    // = (left - n) / v; taking none is better when n < 1. Speeds not measured yet count as
+    // equal.
+    double u = 1, v = 1;
+    auto mine = speed_.find(slave), theirs = speed_.find(r.members.front());
+    if (mine != speed_.end() && theirs != speed_.end() && mine->second > 0 && theirs->second > 0)
+        u = mine->second, v = theirs->second;
+    double first = fresh_cost_;
+    if (division_ == Division::Sequence && s.rendered && jump_cost_ > 0 && r.lo > s.last)
+        first = std::min(jump_cost_, fresh_cost_);
+    double balanced = (double(left) * u - (first - 1) * v) / (u + v);
+    // Without fc a tie goes to the newcomer (half of an odd number rounds up).
+    return std::max(0, int(std::floor(balanced + (fresh_cost_ > 1 ? 0.0 : 0.5))));
+}
+
 bool Schedule::find_range(int slave)
 {
     SlaveState &s = slaves_[slave];
@@ -558,12 +584,12 @@ bool Schedule::find_range(int slave)
     }
     if (best < 0)
         return false;
-    Range &r = ranges_[size_t(best)];
     // Frame division shares a range among as many slaves as it has tiles, hybrid among its
     // share of the slaves; more split it.
     int members = division_ == Division::Frame    ? tiles()
                   : division_ == Division::Hybrid ? std::min(hybrid_members_, tiles())
                                                   : 1;
+    Range &r = ranges_[size_t(best)];
     if (r.members.empty() || int(r.members.size()) < members) {
         // A newcomer to a range whose tiles have owners gets its share by rebalancing, at
         // the next division.
@@ -576,24 +602,35 @@ bool Schedule::find_range(int slave)
         s.cursor = r.frontier;
         return true;
     }
-    int left = r.hi - r.frontier + 1;
-    // The newcomer takes n of the left frames, starting fresh: its first one costs
-    // fresh_cost_ frames. At speeds u (newcomer) and v (the range's slave), in frames a
-    // second, both finish together when (fresh_cost_ + n - 1) / u = (left - n) / v; taking
-    // none is better when n < 1. Speeds not measured yet count as equal.
-    double u = 1, v = 1;
-    auto mine = speed_.find(slave), theirs = speed_.find(r.members.front());
-    if (mine != speed_.end() && theirs != speed_.end() && mine->second > 0 && theirs->second > 0)
-        u = mine->second, v = theirs->second;
-    double balanced = (double(left) * u - (fresh_cost_ - 1) * v) / (u + v);
-    // Without fc a tie goes to the newcomer (half of an odd number rounds up).
-    int take = int(std::floor(balanced + (fresh_cost_ > 1 ? 0.0 : 0.5)));
-    if (left < 2 || take < 1)
+    // Split the range that gives the newcomer the most frames. With fc in sequence division a
+    // renderer that jumps forward keeps its samples (and a renderer cannot go back): the
+    // nearest range ahead of the slave's last frame that gives it any goes first, so that its
+    // later jumps stay forward too.
+    int take = 0;
+    bool ahead = false;
+    for (size_t i = 0; i < ranges_.size(); i++) {
+        const Range &c = ranges_[i];
+        if (range_work(c) <= 0 || int(c.members.size()) < members)
+            continue;
+        int n = split_take(c, slave);
+        if (n < 1)
+            continue;
+        bool forward = division_ == Division::Sequence && fresh_cost_ > 1 && s.rendered &&
+                       c.lo > s.last;
+        bool better = forward ? !ahead || c.lo < ranges_[size_t(best)].lo
+                              : !ahead && (n > take || (n == take && int(i) == best));
+        if (better) {
+            take = n;
+            best = int(i);
+            ahead = forward;
+        }
+    }
+    if (take < 1)
         return false;
     Range tail;
-    tail.lo = tail.frontier = r.hi - take + 1;
-    tail.hi = r.hi;
-    r.hi = tail.lo - 1;
+    tail.hi = ranges_[size_t(best)].hi;
+    tail.lo = tail.frontier = tail.hi - take + 1;
+    ranges_[size_t(best)].hi = tail.lo - 1;
     tail.members.push_back(slave);
     ranges_.push_back(tail);
     s.range = int(ranges_.size()) - 1;
@@ -694,8 +731,12 @@ void Schedule::job_done(int id, int index, const std::vector<int> &tiles, std::v
             cancel.push_back(o);
         }
     }
-    if (slave != 0)
+    if (slave != 0) {
+        auto known = slaves_.find(slave);   // a slave given up for lost is gone
+        if (known != slaves_.end())
+            known->second.rendered = true;
         next_rendering(slave, t);
+    }
     for (const Job &c : cancel)
         next_rendering(c.slave, t);
     prune();

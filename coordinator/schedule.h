@@ -111,6 +111,12 @@ public:
     // (A renderer that jumps forward keeps its samples and pays less than a first frame:
     // the estimate errs towards splitting too little.)
     void set_fresh_cost(double frames) { fresh_cost_ = frames; }
+    // In sequence division a renderer that rendered before keeps its samples when it jumps
+    // forward to the tail of another range: its first frame there costs `frames` coherent
+    // frames (measured on the jumps so far; until one was seen, a jump is priced as a fresh
+    // start). A renderer cannot go back (it ends after the animation's last frame): a tail
+    // before a slave's last frame is a fresh start.
+    void set_jump_cost(double frames) { jump_cost_ = frames; }
 
     // Slaves: a slave joins when it is ready (host identifies its machine for retries).
     void add_slave(int slave, int host);
@@ -158,6 +164,8 @@ private:
         int host = 0;
         int range = -1;
         int cursor = 0;                 // next index it takes in its range
+        bool rendered = false;          // a job of it was done (its renderer has samples)
+        int last = -1;                  // the latest frame index it was given
     };
     struct Orphan {
         int index = 0;
@@ -173,6 +181,7 @@ private:
     const Job *take_orphan(int slave, double t);
     const Job *take_from_range(int slave, double t);
     bool find_range(int slave);
+    int split_take(const Range &r, int slave) const;   // frames a split of r would give slave
     const Job *duplicate(int slave, double t);
     void divide(int r, int index, double when);
     bool whole_frames(const Range &r, int index, const std::map<int, double> &speed) const;
@@ -202,6 +211,7 @@ private:
     double job_seconds_ = 0;            // how long a job takes, smoothed
     bool cheap_moves_ = false;
     double fresh_cost_ = 1;             // a fresh renderer's first frame, in coherent frames
+    double jump_cost_ = 0;              // a renderer's first frame after a jump (0: unknown)
     int hybrid_members_ = 1;            // slaves a hybrid range takes before it is split
     std::deque<Orphan> orphans_;
     std::map<int, Job> jobs_;

@@ -391,6 +391,106 @@ static void test_fresh_cost_shortens_splits()
     }
 }
 
+static void test_jump_cost_lengthens_splits()
+{
+    // Two ranges of 11 frames; the other slave has the first two of its range handed out,
+    // 9 undivided. A slave that finished its range splits the other's: priced as a fresh
+    // start (5 coherent frames) it takes (9 - 4) / 2 = 2 frames; once jumps were measured at
+    // 2 frames, a slave that rendered before takes (9 - 1) / 2 = 4 of a range after its own;
+    // a jump cost above the fresh one is not believed (5 again), and a range before its own
+    // is a fresh start (a renderer cannot go back).
+    for (bool forward : {true, false}) {
+        for (double jump : {0.0, 2.0, 8.0}) {
+            Schedule s({kArea}, 22, Division::Sequence);
+            s.set_fresh_cost(5);
+            if (jump > 0)
+                s.set_jump_cost(jump);
+            s.add_slave(1, 100);
+            s.add_slave(2, 200);
+            s.plan(2, 2);
+            int done_first = forward ? 1 : 2, other = forward ? 2 : 1;
+            int base = forward ? 0 : 11, other_base = forward ? 11 : 0;
+            s.next_job(other, 0, true);
+            s.next_job(other, 0, true);
+            std::vector<int> fresh;
+            std::vector<Job> cancel;
+            for (int k = 0; k < 11; k++) {
+                const Job *j = s.next_job(done_first, 0, true);
+                CHECK(j && j->index == base + k);
+                if (!j)
+                    return;
+                int id = j->id, index = j->index;
+                std::vector<int> tiles = j->tiles;
+                s.job_done(id, index, tiles, fresh, cancel, 0);
+            }
+            const Job *c = s.next_job(done_first, 0, false);
+            CHECK(c && c->index == other_base + (forward && jump == 2.0 ? 7 : 9));
+        }
+    }
+}
+
+static void test_split_prefers_a_forward_jump()
+{
+    // Three ranges of 11 frames. Slave 2 finished 11..21; slave 1 has 0 and 1 handed out (9
+    // undivided, behind slave 2: a fresh start, worth (9 - 4) / 2 = 2 frames), slave 3 has
+    // 22..25 (7 undivided, ahead: a jump of 2 frames, worth (7 - 1) / 2 = 3). The split takes
+    // the 3 at the end of slave 3's range, not 2 of the range with more work.
+    Schedule s({kArea}, 33, Division::Sequence);
+    s.set_fresh_cost(5);
+    s.set_jump_cost(2);
+    for (int k = 1; k <= 3; k++)
+        s.add_slave(k, 100 * k);
+    s.plan(3, 3);
+    s.next_job(1, 0, true);
+    s.next_job(1, 0, true);
+    for (int k = 0; k < 4; k++)
+        s.next_job(3, 0, true);
+    std::vector<int> fresh;
+    std::vector<Job> cancel;
+    for (int k = 0; k < 11; k++) {
+        const Job *j = s.next_job(2, 0, true);
+        CHECK(j && j->index == 11 + k);
+        if (!j)
+            return;
+        int id = j->id, index = j->index;
+        std::vector<int> tiles = j->tiles;
+        s.job_done(id, index, tiles, fresh, cancel, 0);
+    }
+    const Job *c = s.next_job(2, 0, false);
+    CHECK(c && c->index == 30);
+}
+
+static void test_split_takes_the_nearest_range_ahead()
+{
+    // Three ranges of 11 frames. Slave 1 finished 0..10; slave 2 has 11..14 handed out (7
+    // undivided, a jump of 2 frames is worth (7 - 1) / 2 = 3), slave 3 has 22 and 23 (9
+    // undivided, worth 4). Slave 1 takes the 3 at the end of the nearer range, so that its
+    // jump to slave 3's range later is forward again.
+    Schedule s({kArea}, 33, Division::Sequence);
+    s.set_fresh_cost(5);
+    s.set_jump_cost(2);
+    for (int k = 1; k <= 3; k++)
+        s.add_slave(k, 100 * k);
+    s.plan(3, 3);
+    for (int k = 0; k < 4; k++)
+        s.next_job(2, 0, true);
+    s.next_job(3, 0, true);
+    s.next_job(3, 0, true);
+    std::vector<int> fresh;
+    std::vector<Job> cancel;
+    for (int k = 0; k < 11; k++) {
+        const Job *j = s.next_job(1, 0, true);
+        CHECK(j && j->index == k);
+        if (!j)
+            return;
+        int id = j->id, index = j->index;
+        std::vector<int> tiles = j->tiles;
+        s.job_done(id, index, tiles, fresh, cancel, 0);
+    }
+    const Job *c = s.next_job(1, 0, false);
+    CHECK(c && c->index == 19);
+}
+
 static void test_faster_newcomer_takes_more()
 {
     // fc, a fresh frame costs 5 coherent ones; the newcomer renders twice as fast: of 9
@@ -633,6 +733,9 @@ int main()
     test_idle_slave_splits_range();
     test_hybrid_ranges_are_shared();
     test_fresh_cost_shortens_splits();
+    test_jump_cost_lengthens_splits();
+    test_split_prefers_a_forward_jump();
+    test_split_takes_the_nearest_range_ahead();
     test_faster_newcomer_takes_more();
     test_dead_slave_orphans();
     test_failure_retries_elsewhere();
