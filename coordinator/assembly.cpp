@@ -197,12 +197,6 @@ bool FrameAssembly::put(int index, const std::vector<Rect> &rects, const std::ve
     return true;
 }
 
-bool FrameAssembly::needs_encoding(int index) const
-{
-    auto it = frames_in_flight_.find(index);
-    return it == frames_in_flight_.end() || it->second.file.empty();
-}
-
 bool FrameAssembly::write(int index, std::vector<uint8_t> &samples, bool &disk_full,
                           std::string &err)
 {

@@ -3,7 +3,8 @@
 // A frame lives in memory (its stored samples: zeros outside the render area like POV-Ray's
 // own partial renders) from its first tile to its last; then it is encoded in the output
 // format (a frame that came whole with the file POV-Ray's writer made of it is stored as that
-// file: OpenImageIO, whose 262 libraries take 0.4 s of CPU to load, is then not needed), written under a temporary name in the output directory with every write, the fsync
+// file: OpenImageIO, whose 262 libraries take 0.4 s of CPU to load, is then not needed),
+// written under a temporary name in the output directory with every write, the fsync
 // and the close checked and its size on disk compared with the encoded size, renamed to
 // POV-Ray's name for it, recorded in the output directory's journal (output_dir.h), and its
 // memory is freed. So a file under a final name is always complete, a full disk is an error
@@ -60,9 +61,6 @@ public:
     bool put(int index, const std::vector<Rect> &rects, const std::vector<char> &keep,
              const std::string &encoding, const std::vector<uint8_t> &data,
              const std::vector<uint8_t> &file, std::string &err);
-
-    // Whether writing frame index i needs OpenImageIO (it is not stored as POV-Ray's file).
-    bool needs_encoding(int index) const;
 
     // Write frame index i (encode, temp name, checked writes and fsync, rename, journal) and
     // free its memory; its samples move to `samples` (for the preview). False with err; then

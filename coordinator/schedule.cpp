@@ -540,9 +540,6 @@ const Job *Schedule::take_from_range(int slave, double t)
     return nullptr;
 }
 
-// Give a slave without a range one: an abandoned range first, then (frame division) the
-// range with the most work per member to join, else the later half of the range with the
-// most work per member.
 int Schedule::split_take(const Range &r, int slave) const
 {
     const SlaveState &s = slaves_.at(slave);
@@ -566,6 +563,8 @@ int Schedule::split_take(const Range &r, int slave) const
     return std::max(0, int(std::floor(balanced + (fresh_cost_ > 1 ? 0.0 : 0.5))));
 }
 
+// Give a slave without a range one: an abandoned range first, then (frame division) the
+// range with the most work per member to join, else the tail of a range split (split_take).
 bool Schedule::find_range(int slave)
 {
     SlaveState &s = slaves_[slave];
