@@ -337,13 +337,17 @@ FORMATS = {
 }
 
 
+# Frame division assembles tiles and encodes them with OpenImageIO; sequence division gets
+# whole frames, stored as the file POV-Ray's writer made of each (patch 0034; OpenEXR's are
+# encoded as tiles are).
+@pytest.mark.parametrize("division", ["frame", "sequence"])
 @pytest.mark.parametrize("name", sorted(FORMATS))
 def test_output_format_as_povray_writes_it(coordinator, coordinator_references, tmp_path,
-                                           name):
+                                           name, division):
     fmt, ext, pixel_type = FORMATS[name]
     opts = SMALL + ["+A0.1", "+AM1"] + fmt
     out = tmp_path / "out"
-    r = coordinator.run(["--quiet", "--division", "frame", "--tile", "48", "--slaves", "2",
+    r = coordinator.run(["--quiet", "--division", division, "--tile", "48", "--slaves", "2",
                          SCENE] + opts + ["-o", str(out)])
     assert r.returncode == 0, r.stderr
     ref = coordinator_references.frames(SCENE, opts, pixel_type)
@@ -400,11 +404,14 @@ def test_unsupported_output_is_refused(coordinator, tmp_path, opt, words):
 
 # --- the live preview -------------------------------------------------------------------------
 
-def test_preview_while_rendering(coordinator, coordinator_references, tmp_path):
+# Sequence division has not loaded OpenImageIO when the preview is first due: it loads then,
+# in the background, and the preview follows.
+@pytest.mark.parametrize("division", ["frame", "sequence"])
+def test_preview_while_rendering(coordinator, coordinator_references, tmp_path, division):
     out = tmp_path / "out"
     ref = coordinator_references.frames(SCENE, SLOW)
     # On one processor the render lasts well beyond the preview's first write (5 s in).
-    p = coordinator.start(["--no-fc", "--quiet", "--division", "frame", "--slaves", "2",
+    p = coordinator.start(["--no-fc", "--quiet", "--division", division, "--slaves", "2",
                            SCENE] + SLOW + ["-o", str(out)], prefix=["taskset", "-c", "0"])
     latest = out / "preview" / "latest.png"
     deadline = time.time() + 60
