@@ -130,7 +130,7 @@ void FrameAssembly::remove_stale_temps() const
 
 bool FrameAssembly::put(int index, const std::vector<Rect> &rects, const std::vector<char> &keep,
                         const std::string &encoding, const std::vector<uint8_t> &data,
-                        const std::vector<uint8_t> &file, std::string &err)
+                        std::vector<uint8_t> file, std::string &err)
 {
     size_t pixels = 0;
     for (const Rect &r : rects) {
@@ -154,14 +154,12 @@ bool FrameAssembly::put(int index, const std::vector<Rect> &rects, const std::ve
         return false;
     }
     size_t sample = pixel_type_bytes(format_.pixels);
-    bool first = frames_in_flight_.count(index) == 0;
     Pending &p = frames_in_flight_[index];
     if (p.samples.empty())
         p.samples.assign(size_t(width_) * size_t(height_) * 3 * sample, 0);
     // POV-Ray's file stands for the frame only when this one result brought all of it.
-    bool whole = first && rects.size() == 1 && keep[0] && rects[0] == Rect{0, 0, width_, height_};
-    if (whole)
-        p.file = file;
+    if (rects.size() == 1 && keep[0] && rects[0] == Rect{0, 0, width_, height_})
+        p.file = std::move(file);
     else
         p.file.clear();
     if (floats && p.values.empty()) {

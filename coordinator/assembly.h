@@ -60,7 +60,7 @@ public:
     // with err on a malformed payload or an encoding that does not carry the output format.
     bool put(int index, const std::vector<Rect> &rects, const std::vector<char> &keep,
              const std::string &encoding, const std::vector<uint8_t> &data,
-             const std::vector<uint8_t> &file, std::string &err);
+             std::vector<uint8_t> file, std::string &err);
 
     // Write frame index i (encode, temp name, checked writes and fsync, rename, journal) and
     // free its memory; its samples move to `samples` (for the preview). False with err; then

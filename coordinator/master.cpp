@@ -349,7 +349,7 @@ void Master::on_frame(int src)
         for (size_t k = 0; k < fr.tiles.size(); k++)
             keep[k] = std::find(fresh.begin(), fresh.end(), fr.tiles[k]) != fresh.end();
         std::string err;
-        if (!assembly_->put(idx, fr.rects, keep, fr.encoding, fr.data, fr.file, err)) {
+        if (!assembly_->put(idx, fr.rects, keep, fr.encoding, fr.data, std::move(fr.file), err)) {
             fatal(strf("frame %d from host %s: %s", fr.frame, host.c_str(), err.c_str()));
             return;
         }

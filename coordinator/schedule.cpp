@@ -540,6 +540,13 @@ const Job *Schedule::take_from_range(int slave, double t)
     return nullptr;
 }
 
+// In sequence division a slave that was given frames before renders them first: its renderer
+// reaches r's frames with samples (a renderer only goes forward).
+bool Schedule::jumps_forward(const Range &r, const SlaveState &s) const
+{
+    return division_ == Division::Sequence && s.last >= 0 && r.lo > s.last;
+}
+
 int Schedule::split_take(const Range &r, int slave) const
 {
     const SlaveState &s = slaves_.at(slave);
@@ -556,7 +563,7 @@ int Schedule::split_take(const Range &r, int slave) const
     if (mine != speed_.end() && theirs != speed_.end() && mine->second > 0 && theirs->second > 0)
         u = mine->second, v = theirs->second;
     double first = fresh_cost_;
-    if (division_ == Division::Sequence && s.rendered && jump_cost_ > 0 && r.lo > s.last)
+    if (jump_cost_ > 0 && jumps_forward(r, s))
         first = std::min(jump_cost_, fresh_cost_);
     double balanced = (double(left) * u - (first - 1) * v) / (u + v);
     // Without fc a tie goes to the newcomer (half of an odd number rounds up).
@@ -614,8 +621,7 @@ bool Schedule::find_range(int slave)
         int n = split_take(c, slave);
         if (n < 1)
             continue;
-        bool forward = division_ == Division::Sequence && fresh_cost_ > 1 && s.rendered &&
-                       c.lo > s.last;
+        bool forward = fresh_cost_ > 1 && jumps_forward(c, s);
         bool better = forward ? !ahead || c.lo < ranges_[size_t(best)].lo
                               : !ahead && (n > take || (n == take && int(i) == best));
         if (better) {
@@ -730,12 +736,8 @@ void Schedule::job_done(int id, int index, const std::vector<int> &tiles, std::v
             cancel.push_back(o);
         }
     }
-    if (slave != 0) {
-        auto known = slaves_.find(slave);   // a slave given up for lost is gone
-        if (known != slaves_.end())
-            known->second.rendered = true;
+    if (slave != 0)
         next_rendering(slave, t);
-    }
     for (const Job &c : cancel)
         next_rendering(c.slave, t);
     prune();

@@ -164,8 +164,7 @@ private:
         int host = 0;
         int range = -1;
         int cursor = 0;                 // next index it takes in its range
-        bool rendered = false;          // a job of it was done (its renderer has samples)
-        int last = -1;                  // the latest frame index it was given
+        int last = -1;                  // the latest frame index it was given (-1: none yet)
     };
     struct Orphan {
         int index = 0;
@@ -182,6 +181,7 @@ private:
     const Job *take_from_range(int slave, double t);
     bool find_range(int slave);
     int split_take(const Range &r, int slave) const;   // frames a split of r would give slave
+    bool jumps_forward(const Range &r, const SlaveState &s) const; // keeps its samples for r
     const Job *duplicate(int slave, double t);
     void divide(int r, int index, double when);
     bool whole_frames(const Range &r, int index, const std::map<int, double> &speed) const;

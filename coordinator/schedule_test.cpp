@@ -391,6 +391,22 @@ static void test_fresh_cost_shortens_splits()
     }
 }
 
+// Slave renders the next `count` frames of its range, from index `first`, one job at a time.
+static void finish_range(Schedule &s, int slave, int first, int count)
+{
+    std::vector<int> fresh;
+    std::vector<Job> cancel;
+    for (int k = 0; k < count; k++) {
+        const Job *j = s.next_job(slave, 0, true);
+        CHECK(j && j->index == first + k);
+        if (!j)
+            return;
+        int id = j->id, index = j->index;
+        std::vector<int> tiles = j->tiles;
+        s.job_done(id, index, tiles, fresh, cancel, 0);
+    }
+}
+
 static void test_jump_cost_lengthens_splits()
 {
     // Two ranges of 11 frames; the other slave has the first two of its range handed out,
@@ -412,17 +428,7 @@ static void test_jump_cost_lengthens_splits()
             int base = forward ? 0 : 11, other_base = forward ? 11 : 0;
             s.next_job(other, 0, true);
             s.next_job(other, 0, true);
-            std::vector<int> fresh;
-            std::vector<Job> cancel;
-            for (int k = 0; k < 11; k++) {
-                const Job *j = s.next_job(done_first, 0, true);
-                CHECK(j && j->index == base + k);
-                if (!j)
-                    return;
-                int id = j->id, index = j->index;
-                std::vector<int> tiles = j->tiles;
-                s.job_done(id, index, tiles, fresh, cancel, 0);
-            }
+            finish_range(s, done_first, base, 11);
             const Job *c = s.next_job(done_first, 0, false);
             CHECK(c && c->index == other_base + (forward && jump == 2.0 ? 7 : 9));
         }
@@ -445,17 +451,7 @@ static void test_split_prefers_a_forward_jump()
     s.next_job(1, 0, true);
     for (int k = 0; k < 4; k++)
         s.next_job(3, 0, true);
-    std::vector<int> fresh;
-    std::vector<Job> cancel;
-    for (int k = 0; k < 11; k++) {
-        const Job *j = s.next_job(2, 0, true);
-        CHECK(j && j->index == 11 + k);
-        if (!j)
-            return;
-        int id = j->id, index = j->index;
-        std::vector<int> tiles = j->tiles;
-        s.job_done(id, index, tiles, fresh, cancel, 0);
-    }
+    finish_range(s, 2, 11, 11);
     const Job *c = s.next_job(2, 0, false);
     CHECK(c && c->index == 30);
 }
@@ -476,17 +472,7 @@ static void test_split_takes_the_nearest_range_ahead()
         s.next_job(2, 0, true);
     s.next_job(3, 0, true);
     s.next_job(3, 0, true);
-    std::vector<int> fresh;
-    std::vector<Job> cancel;
-    for (int k = 0; k < 11; k++) {
-        const Job *j = s.next_job(1, 0, true);
-        CHECK(j && j->index == k);
-        if (!j)
-            return;
-        int id = j->id, index = j->index;
-        std::vector<int> tiles = j->tiles;
-        s.job_done(id, index, tiles, fresh, cancel, 0);
-    }
+    finish_range(s, 1, 0, 11);
     const Job *c = s.next_job(1, 0, false);
     CHECK(c && c->index == 19);
 }
