@@ -1,0 +1,52 @@
+// LexemeCache: see lexeme_cache.h.
+#include "povrayfc/lexeme_cache.h"
+
+#include <atomic>
+#include <cstring>
+
+#include "povrayfc/parse_hasher.h"
+
+namespace povrayfc {
+
+bool LexemeCache::Store(const LexemeStart &start, Lexeme::Kind kind, int tokenId, double value, int tokenColumn,
+                        const StreamState &end, int endColumn, const char *text, std::size_t textLength) {
+    if (textLength > Lexeme::kMaxText) return false;
+    auto found = index_.find(start);
+    std::uint32_t index;
+    if (found != index_.end()) {
+        index = found->second;
+    } else {
+        index = static_cast<std::uint32_t>(lexemes_.size());
+        lexemes_.emplace_back();
+        index_.emplace(start, index);
+    }
+    Follows(index);
+    Lexeme &lexeme = lexemes_[index];
+    lexeme.start = start;
+    lexeme.kind = kind;
+    lexeme.tokenId = tokenId;
+    lexeme.value = value;
+    lexeme.tokenColumn = tokenColumn;
+    lexeme.end = end;
+    lexeme.endColumn = endColumn;
+    lexeme.textLength = static_cast<std::uint8_t>(textLength);
+    std::memcpy(lexeme.text, text, textLength);
+    lexeme.text[textLength] = '\0';
+    return true;
+}
+
+std::size_t LexemeCache::StartHash::operator()(const LexemeStart &s) const {
+    std::uint64_t h = s.stream * 0x9e3779b97f4a7c15ULL;
+    h ^= static_cast<std::uint64_t>(s.state.offset) + 0x632be59bd9b4e019ULL + (h << 6) + (h >> 2);
+    h ^= static_cast<std::uint64_t>(s.state.lineno) * 0xc2b2ae3d27d4eb4fULL;
+    h ^= static_cast<std::uint64_t>(static_cast<std::uint32_t>(s.state.pushedBack)) << 40;
+    h ^= static_cast<std::uint64_t>(static_cast<std::uint32_t>(s.column)) << 20;
+    return static_cast<std::size_t>(HashFinalize64(h));
+}
+
+std::uint64_t NewStreamSerial() {
+    static std::atomic<std::uint64_t> next{1};
+    return next.fetch_add(1, std::memory_order_relaxed);
+}
+
+}  // namespace povrayfc
