@@ -2,8 +2,8 @@
 
 Each scene below reads every kind of token inside #while, #for and macro bodies (numbers
 of every form, symbols, array elements, vector components, directives, comments, strings,
-skipped #if branches, a macro from another file, bodies longer than the stream's buffer,
-CRLF line ends) and prints what it computed with #debug. povray-fc must render the same
+skipped #if branches, a macro from another file, a file included on some passes, bodies
+longer than the stream's buffer, CRLF line ends) and prints what it computed with #debug. povray-fc must render the same
 pixels and print the same debug text as Debian's povray, which reads every pass afresh;
 an error on a later pass must be reported at the same line and column.
 """
@@ -55,6 +55,9 @@ plane { y, -0.5 pigment { checker rgb 0.8 rgb 0.3 } }
   #if (P.x >= 1 & P.y <= 0.4 | P.z < -2)
     #declare Total = Total + P.x + P.y;
   #end
+  #if (mod(I, 10) = 0)
+    #include "step.inc"  // a file included on some passes: a new stream each time
+  #end
   #debug concat("I ", str(I, 0, 0), " value ", str(Values[I], 0, 6), " total ", str(Total, 0, 6), "\\n")
   #declare I = I + 1;
 #end
@@ -94,6 +97,8 @@ def write_scene(directory, crlf=False):
         text = text.replace("\n", "\r\n")
         include = include.replace("\n", "\r\n")
     (directory / "ring.inc").write_bytes(include.encode())
+    step = "#declare Total = Total + sqrt(I + 0.25) / 3;\n#declare K = 0;\n#while (K < 3) #declare Total = Total + K * 1e-2; #declare K = K + 1; #end\n"
+    (directory / "step.inc").write_bytes((step.replace("\n", "\r\n") if crlf else step).encode())
     scene = directory / "loops.pov"
     scene.write_bytes(text.encode())
     return scene
