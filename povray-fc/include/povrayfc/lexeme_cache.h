@@ -10,6 +10,9 @@
 // characters, its kind and number value, and the state of the stream after it. On a later
 // pass the same start gives the same characters, so it gives the same token: the tokenizer
 // sets the stream to the stored end and goes on from the token as if it had read it.
+// It keeps tokens only from a stream that went back once (a loop's second pass, a macro of
+// the same file): a file opened anew per call of a macro in another file is never read
+// twice from the same stream, and keeping its tokens only cost time.
 //
 // Only the reading is replayed. What a token means (an identifier's current value, a
 // directive's effect) is worked out again every time, by POV-Ray's own code.
