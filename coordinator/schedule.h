@@ -113,8 +113,8 @@ public:
     void set_fresh_cost(double frames) { fresh_cost_ = frames; }
     // In sequence division a renderer that rendered before keeps its samples when it jumps
     // forward to the tail of another range: its first frame there costs `frames` coherent
-    // frames (measured on the jumps so far; until one was seen, a jump is priced as a fresh
-    // start). A renderer cannot go back (it ends after the animation's last frame): a tail
+    // frames (measured on the jumps so far; until one was seen, a jump is priced halfway
+    // between a coherent frame and a fresh start). A renderer cannot go back (it ends after the animation's last frame): a tail
     // before a slave's last frame is a fresh start.
     void set_jump_cost(double frames) { jump_cost_ = frames; }
 
@@ -182,6 +182,7 @@ private:
     bool find_range(int slave);
     int split_take(const Range &r, int slave) const;   // frames a split of r would give slave
     bool jumps_forward(const Range &r, const SlaveState &s) const; // keeps its samples for r
+    double unmeasured_jump_cost() const;                // a forward jump's price before one is seen
     const Job *duplicate(int slave, double t);
     void divide(int r, int index, double when);
     bool whole_frames(const Range &r, int index, const std::map<int, double> &speed) const;

@@ -410,11 +410,12 @@ static void finish_range(Schedule &s, int slave, int first, int count)
 static void test_jump_cost_lengthens_splits()
 {
     // Two ranges of 11 frames; the other slave has the first two of its range handed out,
-    // 9 undivided. A slave that finished its range splits the other's: priced as a fresh
-    // start (5 coherent frames) it takes (9 - 4) / 2 = 2 frames; once jumps were measured at
-    // 2 frames, a slave that rendered before takes (9 - 1) / 2 = 4 of a range after its own;
-    // a jump cost above the fresh one is not believed (5 again), and a range before its own
-    // is a fresh start (a renderer cannot go back).
+    // 9 undivided. A slave that finished its range splits the other's. A range before its
+    // own is a fresh start (5 coherent frames: a renderer cannot go back): it takes
+    // (9 - 4) / 2 = 2 frames. A range after its own is a jump forward, with the renderer's
+    // samples: before any jump was measured it is priced halfway, (1 + 5) / 2 = 3, and takes
+    // (9 - 2) / 2 = 3 frames; once jumps were measured at 2 frames it takes (9 - 1) / 2 = 4;
+    // a jump cost above the fresh one is not believed (5 again: 2 frames).
     for (bool forward : {true, false}) {
         for (double jump : {0.0, 2.0, 8.0}) {
             Schedule s({kArea}, 22, Division::Sequence);
@@ -430,7 +431,8 @@ static void test_jump_cost_lengthens_splits()
             s.next_job(other, 0, true);
             finish_range(s, done_first, base, 11);
             const Job *c = s.next_job(done_first, 0, false);
-            CHECK(c && c->index == other_base + (forward && jump == 2.0 ? 7 : 9));
+            int taken = !forward ? 2 : jump == 0.0 ? 3 : jump == 2.0 ? 4 : 2;
+            CHECK(c && c->index == other_base + 11 - taken);
         }
     }
 }
