@@ -9,7 +9,8 @@
 namespace povrayfc {
 
 bool LexemeCache::Store(const LexemeStart &start, Lexeme::Kind kind, int tokenId, double value, int tokenColumn,
-                        const StreamState &end, int endColumn, const char *text, std::size_t textLength) {
+                        const StreamState &end, int endColumn, const char *text, std::size_t textLength,
+                        int symbolSlot) {
     if (textLength > Lexeme::kMaxText) return false;
     auto found = index_.find(start);
     std::uint32_t index;
@@ -25,6 +26,7 @@ bool LexemeCache::Store(const LexemeStart &start, Lexeme::Kind kind, int tokenId
     lexeme.start = start;
     lexeme.kind = kind;
     lexeme.tokenId = tokenId;
+    lexeme.symbolSlot = symbolSlot;
     lexeme.value = value;
     lexeme.tokenColumn = tokenColumn;
     lexeme.end = end;

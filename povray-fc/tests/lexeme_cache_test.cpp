@@ -49,6 +49,21 @@ TEST(LexemeCache, FindsWhatWasStoredWithEverythingKept) {
     EXPECT_EQ(l->textLength, 4);
 }
 
+TEST(LexemeCache, KeepsASymbolsSlotAndReservedWord) {
+    LexemeCache cache;
+    ASSERT_TRUE(cache.Store(StartAt(3, 100), Lexeme::Kind::kSymbol, 17, 0, 14, EndAt(103), 15, "box", 3, 42));
+    ASSERT_TRUE(cache.Store(StartAt(3, 104), Lexeme::Kind::kSymbol, Lexeme::kNotReserved, 0, 18, EndAt(107), 19,
+                            "Pos", 3, 7));
+    const Lexeme *l = cache.Find(StartAt(3, 100));
+    ASSERT_NE(l, nullptr);
+    EXPECT_EQ(l->tokenId, 17);
+    EXPECT_EQ(l->symbolSlot, 42);
+    l = cache.Find(StartAt(3, 104));
+    ASSERT_NE(l, nullptr);
+    EXPECT_EQ(l->tokenId, Lexeme::kNotReserved);
+    EXPECT_EQ(l->symbolSlot, 7);
+}
+
 TEST(LexemeCache, AStartDiffersInAnyPartMisses) {
     LexemeCache cache;
     ASSERT_TRUE(cache.Store(StartAt(3, 100), Lexeme::Kind::kSymbol, 0, 0, 14, EndAt(103), 15, "K1t", 3));

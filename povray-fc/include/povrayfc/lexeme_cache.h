@@ -15,7 +15,9 @@
 // twice from the same stream, and keeping its tokens only cost time.
 //
 // Only the reading is replayed. What a token means (an identifier's current value, a
-// directive's effect) is worked out again every time, by POV-Ray's own code.
+// directive's effect) is worked out again every time, by POV-Ray's own code. What follows
+// from a symbol's characters alone is kept too: where its name hashes to in the parser's
+// tables, and whether it is a reserved word (whose table never changes).
 //
 // Exactness: a start matches only the same stream object (a serial number that no other
 // stream in the process gets, so a file opened anew, perhaps rewritten meanwhile, never
@@ -53,6 +55,7 @@ struct LexemeStart {
 
 struct Lexeme {
     static constexpr std::uint32_t kNone = 0xffffffffu;
+    static constexpr int kNotReserved = -1;     // kSymbol: an identifier, not a reserved word
 
     enum class Kind : std::uint8_t {
         kPunctuation,   // a token the tokenizer writes as it reads it ({, <=, ...)
@@ -65,7 +68,9 @@ struct Lexeme {
     LexemeStart start;          // where it was read from
     std::uint32_t next = kNone; // the lexeme read after it last time (a hint, see Find)
     Kind kind = Kind::kPunctuation;
-    int tokenId = 0;            // kPunctuation: the token written
+    int tokenId = 0;            // kPunctuation: the token written; kSymbol: the reserved word's
+                                // token, or kNotReserved
+    int symbolSlot = -1;        // kSymbol: the slot its name hashes to in the parser's tables
     double value = 0.0;         // kNumber
     int tokenColumn = 0;        // the column the token was reported at
     StreamState end;            // the stream after the token (its look-ahead pushed back)
@@ -105,7 +110,8 @@ public:
     // Keeps what was read from `start` (replacing what was); false (nothing kept) when
     // the text is longer than Lexeme::kMaxText.
     bool Store(const LexemeStart &start, Lexeme::Kind kind, int tokenId, double value, int tokenColumn,
-               const StreamState &end, int endColumn, const char *text, std::size_t textLength);
+               const StreamState &end, int endColumn, const char *text, std::size_t textLength,
+               int symbolSlot = -1);
 
     std::size_t Size() const { return lexemes_.size(); }
 
