@@ -114,8 +114,8 @@ public:
     // In sequence division a renderer that rendered before keeps its samples when it jumps
     // forward to the tail of another range: its first frame there costs `frames` coherent
     // frames (measured on the jumps so far; until one was seen, a jump is priced halfway
-    // between a coherent frame and a fresh start). A renderer cannot go back (it ends after the animation's last frame): a tail
-    // before a slave's last frame is a fresh start.
+    // between a coherent frame and a fresh start). A renderer cannot go back (it ends after
+    // the animation's last frame): a tail before a slave's last frame is a fresh start.
     void set_jump_cost(double frames) { jump_cost_ = frames; }
 
     // Slaves: a slave joins when it is ready (host identifies its machine for retries).

@@ -71,6 +71,7 @@ struct Lexeme {
     int tokenId = 0;            // kPunctuation: the token written; kSymbol: the reserved word's
                                 // token, or kNotReserved
     int symbolSlot = -1;        // kSymbol: the slot its name hashes to in the parser's tables
+                                // (a kSymbol is always stored with it and with tokenId)
     double value = 0.0;         // kNumber
     int tokenColumn = 0;        // the column the token was reported at
     StreamState end;            // the stream after the token (its look-ahead pushed back)
