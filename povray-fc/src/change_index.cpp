@@ -25,6 +25,10 @@ ChangeIndex::ChangeIndex(std::vector<Hull> hulls, int gridResolution) {
     for (Hull &h : hulls)
         if (!h.box.Empty()) hulls_.push_back(std::move(h));
     for (const Hull &h : hulls_) bounds_.Grow(h.box);
+    if (!hulls_.empty() && bounds_.IsFinite()) {
+        boundsCentre_ = Centre(bounds_);
+        boundsHalfExtent_ = HalfExtent(bounds_);
+    }
     if (hulls_.size() <= kDirectHulls || !bounds_.IsFinite()) return;
 
     // Hulls are binned widened by a slack; a segment whose own rounding margin could be
@@ -62,7 +66,7 @@ bool ChangeIndex::MayMeet(const Segment &s) const {
     if (!bounds_.IsFinite()) return true;
     // A hull inside the union has a margin at most twice the union's (max norm), so the
     // union widened by twice its own margin holds every hull widened by its margin.
-    const double margin = 2.0 * SegmentMargin(s, Centre(bounds_), HalfExtent(bounds_));
+    const double margin = 2.0 * SegmentMargin(s, boundsCentre_, boundsHalfExtent_);
     if (!MeetsWidened(s, bounds_, margin)) return false;
     if (grid_ && margin <= gridSlack_) return MayMeetThroughGrid(s);
     for (const Hull &h : hulls_)
@@ -73,7 +77,7 @@ bool ChangeIndex::MayMeet(const Segment &s) const {
 bool ChangeIndex::MayMeetUnion(const Segment &s) const {
     if (hulls_.empty()) return false;
     if (!bounds_.IsFinite()) return true;
-    return MeetsWidened(s, bounds_, 2.0 * SegmentMargin(s, Centre(bounds_), HalfExtent(bounds_)));
+    return MeetsWidened(s, bounds_, 2.0 * SegmentMargin(s, boundsCentre_, boundsHalfExtent_));
 }
 
 bool ChangeIndex::MayMeetThroughGrid(const Segment &s) const {

@@ -48,6 +48,9 @@ class ChangeIndex {
 
     std::vector<Hull> hulls_;
     Box bounds_;  // union of the hull boxes
+    // Its centre and half extent (max norm), for every segment's margin: worked out once.
+    Vec3 boundsCentre_{0.0, 0.0, 0.0};
+    double boundsHalfExtent_ = 0.0;
     std::unique_ptr<VoxelGrid> grid_;
     double gridSlack_ = 0.0;               // hulls are binned widened by this much
     std::vector<std::uint32_t> cellStart_;  // CSR: hulls of voxel v are
