@@ -130,7 +130,7 @@ void FrameAssembly::remove_stale_temps() const
 
 bool FrameAssembly::put(int index, const std::vector<Rect> &rects, const std::vector<char> &keep,
                         const std::string &encoding, const std::vector<uint8_t> &data,
-                        std::vector<uint8_t> file, std::string &err)
+                        std::vector<uint8_t> file, double file_gamma, std::string &err)
 {
     size_t pixels = 0;
     for (const Rect &r : rects) {
@@ -162,6 +162,8 @@ bool FrameAssembly::put(int index, const std::vector<Rect> &rects, const std::ve
         p.file = std::move(file);
     else
         p.file.clear();
+    if (file_gamma > 0)
+        p.file_gamma = file_gamma;
     if (floats && p.values.empty()) {
         p.quantizer.reset(new Quantizer);
         if (!p.quantizer->parse(data.data() + pixels * 12, data.size() - pixels * 12, err))
@@ -211,7 +213,7 @@ bool FrameAssembly::write(int index, std::vector<uint8_t> &samples, bool &disk_f
     if (!p.file.empty())
         bytes.swap(p.file);
     else if (!encode_image(format_.oiio, format_.compression, width_, height_, format_.pixels,
-                           p.samples.data(), bytes, err))
+                           p.samples.data(), bytes, err, p.file_gamma))
         return false;
     std::string tmp = temp_path(index), dst = final_path(index);
     if (!write_file_durably(tmp, bytes.data(), bytes.size(), err)) {

@@ -56,11 +56,12 @@ public:
     // Copy the rectangles of one result (an encoding of frame_record.h) into frame index i
     // (allocated on first use). Only rectangles whose `keep` flag is set are copied (the
     // others arrived before). `file` is the image file POV-Ray made of a whole frame, or
-    // empty: it is written as it is when it brought every pixel of the frame. Returns false
-    // with err on a malformed payload or an encoding that does not carry the output format.
+    // empty: it is written as it is when it brought every pixel of the frame. `file_gamma` is
+    // the gamma POV-Ray's file would record (0: not said), for an encoded frame. Returns
+    // false with err on a malformed payload or an encoding that does not carry the format.
     bool put(int index, const std::vector<Rect> &rects, const std::vector<char> &keep,
              const std::string &encoding, const std::vector<uint8_t> &data,
-             std::vector<uint8_t> file, std::string &err);
+             std::vector<uint8_t> file, double file_gamma, std::string &err);
 
     // Write frame index i (encode, temp name, checked writes and fsync, rename, journal) and
     // free its memory; its samples move to `samples` (for the preview). False with err; then
@@ -78,6 +79,7 @@ private:
         std::vector<float> values;              // diffusion dithering: unquantized, or empty
         std::unique_ptr<Quantizer> quantizer;
         std::vector<uint8_t> file;              // POV-Ray's file of the whole frame, or empty
+        double file_gamma = 0;                  // the gamma its file records (0: not said)
     };
 
     size_t encoded_size(bool &exact) const;

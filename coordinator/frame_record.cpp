@@ -79,6 +79,8 @@ bool parse_record_header(const std::string &line, FrameRecord &rec, size_t &payl
             rec.parse_seconds = v;
         } else if (key == "trace") {
             rec.trace_seconds = v;
+        } else if (key == "file_gamma") {
+            rec.file_gamma = v;
         } else if (key == "bytes") {
             if (v < 0 || v > double(kMaxPayload)) {
                 err = "frame record size out of range: " + value;

@@ -11,7 +11,8 @@
 // the OpenEXR writer converts to half); rgb8 also carries PNG's 5 to 8 bits as it stores them.
 // Patch 0034: a record of the whole image in Targa or PNG says file=F and carries, after the
 // pixels, the F bytes of the file the format's writer makes of the frame (as one POV-Ray
-// process would write it).
+// process would write it). Patch 0039: file_gamma=G, the gamma the format's writer records in
+// the file (Targa's extension area), for the frames fc-master assembles.
 #pragma once
 
 #include <cstdint>
@@ -30,6 +31,7 @@ struct FrameRecord {
     std::vector<Rect> rects;
     std::vector<uint8_t> data;      // the pixels, as sent
     std::vector<uint8_t> file;      // the frame's image file (whole-image records), or empty
+    double file_gamma = 0;          // the gamma its file records (patch 0039; 0: not said)
 };
 
 // Incremental reader: feed it the bytes read from the channel, take complete records out.

@@ -1,5 +1,6 @@
 // image_io.h - fc-master's image encoding and decoding, through OpenImageIO loaded as a plugin
-// (fc-image.so beside fc-master; see image_plugin.cpp for why).
+// (fc-image.so beside fc-master; see image_plugin.cpp for why), and 8-bit Targa through
+// POV-Ray's own writer in fc-image-writer (image_writer.h).
 //
 // Images are 3-channel, rows top first, with samples of one PixelType. Encoding goes into
 // memory: the caller writes the bytes itself (write_file_durably in util.h), so that a full
@@ -31,12 +32,20 @@ bool image_io_ready();
 // unordered_map_concurrent.h, seen when a render failed at once).
 void wait_image_io();
 
+// Whether encode_image gives this format to fc-image-writer (POV-Ray's own Targa writer, 2 ms
+// to start; image_writer.h) rather than to OpenImageIO: 8-bit Targa, when the helper is there.
+bool encoded_by_image_writer(const std::string &format, PixelType type);
+
 // Encode width x height pixels in an OpenImageIO format ("targa", "png", "openexr") with
-// compression ("" = default, "fast" = the quickest encoding) into out. False with err (the
-// plugin missing included).
+// compression ("" = default, "fast" = the quickest encoding, "rle" for Targa) into out:
+// 8-bit Targa by fc-image-writer when encoded_by_image_writer says so (OpenImageIO should the
+// helper fail, with a warning), everything else by OpenImageIO. False with err (the plugin
+// missing included).
+// file_gamma is the gamma POV-Ray's writer records in the file (frame_record.h; 0: not said,
+// recorded as 1.0); only fc-image-writer records it.
 bool encode_image(const std::string &format, const std::string &compression, int width,
                   int height, PixelType type, const void *pixels, std::vector<uint8_t> &out,
-                  std::string &err);
+                  std::string &err, double file_gamma = 0);
 
 // Read a whole image file as 3 channels of type into pixels (a short or damaged file is an
 // error); channels is the file's own count. False with err.

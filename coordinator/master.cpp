@@ -26,6 +26,7 @@
 #include <pvm3.h>
 
 #include "image_io.h"
+#include "image_writer.h"
 #include "master.h"
 #include "protocol.h"
 #include "pvmutil.h"
@@ -341,15 +342,17 @@ void Master::on_frame(int src)
             sched_->set_jump_cost((jump_seconds_ / jump_pixels_) / coherent);
     }
     if (!fresh.empty()) {
-        // A result without POV-Ray's file of the frame is encoded here: OpenImageIO loads in
-        // the background meanwhile (sequence division did not load it at the start).
-        if (fr.file.empty())
+        // A result without POV-Ray's file of the frame is encoded here: 8-bit Targa by
+        // fc-image-writer, anything else by OpenImageIO, which loads in the background
+        // meanwhile (sequence division did not load it at the start).
+        if (fr.file.empty() && !encoded_by_image_writer(format_.oiio, format_.pixels))
             preload_image_io();
         std::vector<char> keep(fr.tiles.size(), 0);
         for (size_t k = 0; k < fr.tiles.size(); k++)
             keep[k] = std::find(fresh.begin(), fresh.end(), fr.tiles[k]) != fresh.end();
         std::string err;
-        if (!assembly_->put(idx, fr.rects, keep, fr.encoding, fr.data, std::move(fr.file), err)) {
+        if (!assembly_->put(idx, fr.rects, keep, fr.encoding, fr.data, std::move(fr.file),
+                             fr.file_gamma, err)) {
             fatal(strf("frame %d from host %s: %s", fr.frame, host.c_str(), err.c_str()));
             return;
         }
@@ -768,5 +771,6 @@ int main(int argc, char **argv)
     Master master(opt);
     int rc = master.run();
     wait_image_io();
+    stop_image_writer();
     return rc;
 }

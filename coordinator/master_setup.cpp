@@ -118,15 +118,16 @@ bool Master::probe()
         png_ok = probe_resolved_options(renderer_, "+FN", opt_.pov, cwd_, tmpdir_ + "/png",
                                         limit, png, png_err);
     });
-    // OpenImageIO (262 shared libraries, 0.4 s of CPU) loads while POV-Ray is probed and the
-    // slaves start, when the processors are mostly idle; not during the first frames, where
-    // it would hold one slave back for the whole run (fc keeps tiles where they are). Not
-    // before the threads above: while dlopen() runs, glibc's loader lock stalls every
-    // pthread_create. Sequence division gets its frames whole, each with the file POV-Ray
-    // made of it (patch 0034), and needs it only for what comes otherwise (on_frame loads
-    // it then), OpenEXR, resumed frames and the preview: on the master's host those 0.4 s
-    // would come out of its slave's time.
-    if (opt_.division != Division::Sequence)
+    // OpenImageIO (262 shared libraries, 0.4 s of CPU; on the master's host out of its
+    // slave's time) is needed only for what neither POV-Ray's file of a whole frame (patch
+    // 0034) nor fc-image-writer (POV-Ray's Targa writer, for assembled frames) covers: PNG and
+    // OpenEXR frames, resumed frames and the preview. Without fc-image-writer a frame or hybrid
+    // division needs it for every frame: then it loads while POV-Ray is probed and the slaves
+    // start, when the processors are mostly idle; not during the first frames, where it would
+    // hold one slave back for the whole run (fc keeps tiles where they are). Not before the
+    // threads above: while dlopen() runs, glibc's loader lock stalls every pthread_create.
+    bool targa_by_writer = encoded_by_image_writer("targa", PixelType::U8);
+    if (opt_.division != Division::Sequence && !targa_by_writer)
         preload_image_io();
     bool scene_ok = probe_scene(renderer_, "+FT", opt_.pov, cwd_, tmpdir_, limit, scene_, scene_err);
     resolved.join();
@@ -155,8 +156,10 @@ bool Master::probe()
             fputc('\n', stderr);
         return false;
     }
-    // OpenEXR's half floats are made by OpenImageIO as the frames arrive.
-    if (format_.pixels == PixelType::Half)
+    // OpenEXR's half floats are made by OpenImageIO as the frames arrive; assembled PNG
+    // frames are encoded by it.
+    if (format_.pixels == PixelType::Half ||
+        (opt_.division != Division::Sequence && !encoded_by_image_writer(format_.oiio, format_.pixels)))
         preload_image_io();
     // A renderer with the frame channel (the shell-out probe needs it) has frame coherence:
     // the channel's patches come after fc's.

@@ -85,6 +85,7 @@ struct FrameResult {
     std::string encoding;               // "rgb8": 3 bytes a pixel; "rgbf": see dither.h
     std::vector<uint8_t> data;          // the rectangles in order, rows top first
     std::vector<uint8_t> file;          // a whole frame's image file as POV-Ray wrote it, or empty
+    double file_gamma = 0;              // the gamma POV-Ray's file records (0: not said)
 };
 
 struct Progress {

@@ -225,6 +225,7 @@ bool Slave::send_frame(const FrameRecord &rec)
     fr.encoding = rec.encoding;
     fr.data = rec.data;
     fr.file = rec.file;
+    fr.file_gamma = rec.file_gamma;
     int r = send_msg(master_, FC_FRAME, fr);
     if (r < 0) {
         g_stop = 1;     // the master is unreachable

@@ -15,7 +15,7 @@ import time
 import numpy as np
 import pytest
 
-from conftest import COORDINATOR_SCENES, coordinator_renderer, coordinator_stats, frame_files, load_rgb
+from conftest import COORDINATOR_SCENES, FC_MASTER, coordinator_renderer, coordinator_stats, frame_files, load_rgb
 
 pytestmark = pytest.mark.usefixtures("coordinator_build")
 
@@ -357,6 +357,87 @@ def test_output_format_as_povray_writes_it(coordinator, coordinator_references, 
         # Invariant: the same file type, bit depth and pixels as one POV-Ray process's.
         assert got.dtype == want.dtype and (got == want).all(), f
         assert file_kind(out / f) == file_kind(coordinator_references.path(SCENE, opts, f)), f
+
+
+def file_metadata(path):
+    """What OpenImageIO reads from a file's header and footer, but the time it was written:
+    for Targa POV-Ray's software line, platform, gamma and Targa version."""
+    import OpenImageIO as oiio
+    inp = oiio.ImageInput.open(str(path))
+    assert inp, oiio.geterror()
+    spec = inp.spec()
+    meta = {a.name: spec.getattribute(a.name) for a in spec.extra_attribs if a.name != "DateTime"}
+    inp.close()
+    return meta
+
+
+# An assembled Targa frame is encoded by POV-Ray's own writer (fc-image-writer), with the
+# gamma the renderer's file records (patch 0039), so it is the file one POV-Ray process writes
+# but for the time in its footer; and the master never loads OpenImageIO for it.
+@pytest.mark.parametrize("fmt", [["+FT"], ["+FC", "File_Gamma=1.8"]], ids=["targa", "rle-gamma-1.8"])
+def test_assembled_targa_is_povrays_own_file(coordinator, coordinator_references, tmp_path, fmt):
+    opts = SMALL + fmt
+    out = tmp_path / "out"
+    r = coordinator.run(["--quiet", "--division", "frame", "--tile", "48", "--slaves", "2",
+                         SCENE] + opts + ["-o", str(out)])
+    assert r.returncode == 0, r.stderr
+    assert "warning" not in r.stderr, r.stderr
+    ref = coordinator_references.frames(SCENE, opts)
+    assert_frames_exact(out, ref)
+    trace = coordinator.debug_log.read_text()
+    assert "fc-image-writer" in trace and "loading OpenImageIO" not in trace, trace[-3000:]
+    for f in ref:
+        mine, povrays = out / f, coordinator_references.path(SCENE, opts, f)
+        assert file_metadata(mine) == file_metadata(povrays), f
+        assert os.path.getsize(mine) == os.path.getsize(povrays), f
+
+
+# Should fc-image-writer fail, OpenImageIO encodes the frames: same pixels, one warning.
+def test_failing_image_writer_falls_back_to_openimageio(coordinator, coordinator_references,
+                                                        tmp_path):
+    # fc-master finds fc-slave and its helpers beside itself: a copy of it, in a directory
+    # whose fc-image-writer fails.
+    bindir = tmp_path / "bin"
+    bindir.mkdir()
+    subprocess.run(["cp", FC_MASTER, str(bindir / "fc-master")], check=True)
+    for name in ("fc-slave", "fc-image.so"):
+        os.symlink(os.path.join(os.path.dirname(FC_MASTER), name), bindir / name)
+    writer = bindir / "fc-image-writer"
+    writer.write_text("#!/bin/sh\necho 'cannot encode today' >&2\nexit 1\n")
+    writer.chmod(0o755)
+    out = tmp_path / "out"
+    argv = [str(bindir / "fc-master"), "--quiet", "--division", "frame", "--tile", "48",
+            "--slaves", "2", "--povray", coordinator_renderer(), SCENE] + SMALL + ["-o", str(out)]
+    r = subprocess.run(argv, cwd=COORDINATOR_SCENES, env=coordinator.env(), capture_output=True,
+                       text=True, timeout=90)
+    assert r.returncode == 0, r.stderr
+    assert r.stderr.count("encoding Targa frames with OpenImageIO") == 1, r.stderr
+    assert "cannot encode today" in r.stderr, r.stderr
+    assert_frames_exact(out, coordinator_references.frames(SCENE, SMALL))
+
+
+def test_image_writer_refuses_malformed_requests(tmp_path):
+    writer = os.path.join(os.path.dirname(coordinator_renderer()), "fc-image-writer")
+    r = subprocess.run([writer, "extra"], capture_output=True, text=True)
+    assert r.returncode == 2 and "fc-master runs it" in r.stderr
+    # Without its descriptors it says so.
+    r = subprocess.run([writer], capture_output=True, text=True, timeout=10)
+    assert r.returncode == 1 and "descriptor 3" in r.stderr, r.stderr
+    req_r, req_w = os.pipe()
+    rep_r, rep_w = os.pipe()
+    os.write(req_w, b"not a request at all, no")
+    os.close(req_w)
+
+    def fds():
+        os.dup2(req_r, 3)
+        os.dup2(rep_w, 4)
+    r = subprocess.run([writer], capture_output=True, text=True, preexec_fn=fds, close_fds=False,
+                       timeout=10)
+    os.close(req_r)
+    os.close(rep_w)
+    assert r.returncode == 1 and "malformed request" in r.stderr, r.stderr
+    assert os.read(rep_r, 100) == b""
+    os.close(rep_r)
 
 
 OUTPUT_NAMES = {

@@ -1,0 +1,222 @@
+// image_writer_main.cpp - fc-image-writer: fc-master's Targa frames, encoded by POV-Ray's own
+// Targa writer, in a process of its own beside fc-master (image_writer.h is the other end).
+//
+// Why: a frame division assembles every frame from tiles and must encode it. OpenImageIO's
+// 262 shared libraries cost the dynamic loader 0.35-0.4 s of CPU to bind (166,000 symbol
+// lookups, LD_DEBUG=statistics; fc-image.so), which on the master's host comes out of its
+// slave's time: a fifth of a 320x240 Newton run on the emulated cluster. This program is
+// POV-Ray's image code from the patched build (libpovray.a and libvfe.a: their objects are
+// compiled for an executable, -fPIE, so they cannot go into a plugin, and the image code
+// reaches most of POV-Ray) with POV-Ray's 22 libraries: about 2 ms to start. The frames are then the files one
+// POV-Ray process writes, header and footer included, as sequence division's already are
+// (patch 0034 sends POV-Ray's own file of a whole frame).
+//
+// The pixels arrive encoded (the frame channel sends what POV-Ray's Targa writer stores,
+// patch 0030): they go into an 8-bit image and are written with neutral gamma and no dither,
+// so every stored value passes through unchanged (read back as v / 255.0f, then
+// floor(x * 255 + 0.5) = v).
+//
+// Protocol, on descriptors 3 (requests) and 4 (replies), native byte order (same machine):
+//   request: uint32 kRequestMagic, int32 width, int32 height, int32 rle (0 or 1),
+//            float file_gamma (what the file records; <= 0: 1.0),
+//            then width * height * 3 bytes (RGB, rows top first)
+//   reply:   uint32 kReplyMagic, int32 ok (1 or 0), uint64 size, then size bytes: the file,
+//            or the error message when ok is 0
+// The program ends at the end of its requests (fc-master closed them) or on a broken pipe.
+#include <unistd.h>
+
+#include <cerrno>
+#include <cstdint>
+#include <cstdio>
+#include <cstdlib>
+#include <cstring>
+#include <memory>
+#include <string>
+#include <vector>
+
+// configbase.h must be the first POV-Ray header (POV-Ray's rule for base/ files).
+#include "base/configbase.h"
+#include "base/fileinputoutput.h"
+#include "base/povmsgid.h"
+#include "base/image/colourspace.h"
+#include "base/image/encoding.h"
+#include "base/image/image.h"
+#include "base/image/targa.h"
+
+namespace {
+
+const uint32_t kRequestMagic = 0x31574346;    // "FCW1"
+const uint32_t kReplyMagic = 0x31524346;      // "FCR1"
+const int kRequests = 3, kReplies = 4;
+const int kMaxSide = 1 << 16;                 // POV-Ray's images are at most this wide/high
+
+// POV-Ray's output stream, writing into memory instead of a named file.
+class MemoryOStream : public pov_base::OStream
+{
+public:
+    MemoryOStream() : pov_base::OStream(pov_base::POV_File_Image_Targa)
+    {
+        f = open_memstream(&buffer_, &size_);
+        fail = (f == NULL);
+    }
+    ~MemoryOStream()
+    {
+        if (f != NULL)
+            fclose(f);
+        f = NULL;
+        std::free(buffer_);
+    }
+
+    // Flush and close the stream: the bytes are then in data()/size().
+    bool finish()
+    {
+        bool ok = !fail && f != NULL && fflush(f) == 0 && !ferror(f);
+        if (f != NULL && fclose(f) != 0)
+            ok = false;
+        f = NULL;
+        return ok;
+    }
+    const char *data() const { return buffer_; }
+    size_t size() const { return size_; }
+
+private:
+    char *buffer_ = NULL;
+    size_t size_ = 0;
+};
+
+// The values are stored already (v / 255 read back encodes to v): a curve that keeps them, and
+// gives the Targa writer the gamma the renderer's curve had for its extension area.
+class StoredValues : public pov_base::SimpleGammaCurve
+{
+public:
+    explicit StoredValues(float file_gamma) : file_gamma_(file_gamma) {}
+    float Encode(float x) const { return x; }
+    float Decode(float x) const { return x; }
+    float ApproximateDecodingGamma() const { return file_gamma_; }
+    int GetTypeId() const { return kPOVList_GammaType_PowerLaw; }
+    float GetParam() const { return file_gamma_; }
+
+private:
+    float file_gamma_;
+};
+
+bool read_fully(int fd, void *buf, size_t n, bool &eof)
+{
+    char *p = static_cast<char *>(buf);
+    size_t got = 0;
+    eof = false;
+    errno = 0;
+    while (got < n) {
+        ssize_t r = read(fd, p + got, n - got);
+        if (r < 0 && errno == EINTR)
+            continue;
+        if (r <= 0) {
+            eof = (r == 0 && got == 0);
+            return false;
+        }
+        got += size_t(r);
+    }
+    return true;
+}
+
+bool write_fully(int fd, const void *buf, size_t n)
+{
+    const char *p = static_cast<const char *>(buf);
+    while (n > 0) {
+        ssize_t w = write(fd, p, n);
+        if (w < 0 && errno == EINTR)
+            continue;
+        if (w <= 0)
+            return false;
+        p += w;
+        n -= size_t(w);
+    }
+    return true;
+}
+
+bool reply(int ok, const void *data, uint64_t size)
+{
+    struct {
+        uint32_t magic;
+        int32_t ok;
+        uint64_t size;
+    } head = {kReplyMagic, ok, size};
+    return write_fully(kReplies, &head, sizeof head) && write_fully(kReplies, data, size_t(size));
+}
+
+// POV-Ray's Targa file of width x height RGB bytes, into file; false with err.
+bool encode_targa(int width, int height, bool rle, float file_gamma, const unsigned char *rgb,
+                  std::string &file, std::string &err)
+{
+    try {
+        std::unique_ptr<pov_base::Image> image(
+            pov_base::Image::Create(width, height, pov_base::Image::RGB_Int8));
+        for (int y = 0; y < height; y++)
+            for (int x = 0; x < width; x++, rgb += 3)
+                // The integer overload stores the values as they are (the float one truncates).
+                image->SetRGBValue(x, y, (unsigned int)rgb[0], (unsigned int)rgb[1],
+                                   (unsigned int)rgb[2]);
+        pov_base::Image::WriteOptions options;
+        options.bpcc = 8;
+        options.compress = rle ? 1 : 0;
+        // With a neutral working gamma TranscodingGammaCurve::Get gives the encoding curve as
+        // it is: the one that keeps the values and records the file's gamma.
+        options.workingGamma = pov_base::NeutralGammaCurve::Get();
+        options.encodingGamma.reset(new StoredValues(file_gamma > 0 ? file_gamma : 1.0f));
+        options.dither = pov_base::GetNoOpDitherHandler();
+        MemoryOStream stream;
+        pov_base::Targa::Write(&stream, image.get(), options);
+        if (!stream.finish()) {
+            err = "cannot encode Targa into memory";
+            return false;
+        }
+        file.assign(stream.data(), stream.size());
+        return true;
+    } catch (const std::exception &e) {
+        err = std::string("POV-Ray's Targa writer: ") + e.what();
+        return false;
+    }
+}
+
+} // namespace
+
+int main(int argc, char **argv)
+{
+    if (argc != 1) {
+        fprintf(stderr, "fc-image-writer: takes no arguments; fc-master runs it (requests on "
+                        "descriptor 3, replies on 4)\n");
+        return 2;
+    }
+    std::vector<unsigned char> rgb;
+    for (;;) {
+        struct {
+            uint32_t magic;
+            int32_t width, height, rle;
+            float file_gamma;
+        } req;
+        bool eof = false;
+        if (!read_fully(kRequests, &req, sizeof req, eof)) {
+            if (eof)
+                return 0;
+            fprintf(stderr, "fc-image-writer: cannot read a request on descriptor %d: %s\n",
+                    kRequests, errno ? strerror(errno) : "cut short");
+            return 1;
+        }
+        if (req.magic != kRequestMagic || req.width <= 0 || req.height <= 0 ||
+            req.width > kMaxSide || req.height > kMaxSide) {
+            fprintf(stderr, "fc-image-writer: malformed request\n");
+            return 1;
+        }
+        rgb.resize(size_t(req.width) * size_t(req.height) * 3);
+        if (!read_fully(kRequests, rgb.data(), rgb.size(), eof)) {
+            fprintf(stderr, "fc-image-writer: request cut short\n");
+            return 1;
+        }
+        std::string file, err;
+        bool ok = encode_targa(req.width, req.height, req.rle != 0, req.file_gamma, rgb.data(),
+                               file, err);
+        const std::string &out = ok ? file : err;
+        if (!reply(ok ? 1 : 0, out.data(), out.size()))
+            return 1;
+    }
+}
