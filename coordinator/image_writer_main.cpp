@@ -153,6 +153,8 @@ bool reply(int ok, const void *data, uint64_t size)
 struct Encoder {
     std::unique_ptr<pov_base::Image> image;
     int width = 0, height = 0;
+    std::vector<unsigned char> last;    // the bytes the image holds (a row equal to its row
+                                        // there is not set again)
     pov_base::SimpleGammaCurvePtr curve;
     float file_gamma = -1;
 };
@@ -166,6 +168,7 @@ bool encode_targa(Encoder &enc, int width, int height, bool rle, float file_gamm
             enc.image.reset(pov_base::Image::Create(width, height, pov_base::Image::RGBFT_Float));
             enc.width = width;
             enc.height = height;
+            enc.last.clear();
         }
         if (file_gamma <= 0)
             file_gamma = 1.0f;
@@ -174,10 +177,17 @@ bool encode_targa(Encoder &enc, int width, int height, bool rle, float file_gamm
             enc.file_gamma = file_gamma;
         }
         // v / 255.0f encodes back to v: floor(v / 255.0f * 255 + 0.5) = v. Opaque.
-        for (int y = 0; y < height; y++)
-            for (int x = 0; x < width; x++, rgb += 3)
-                enc.image->SetRGBFTValue(x, y, rgb[0] / 255.0f, rgb[1] / 255.0f, rgb[2] / 255.0f,
+        const size_t row_bytes = size_t(width) * 3;
+        const bool have_last = enc.last.size() == row_bytes * size_t(height);
+        for (int y = 0; y < height; y++) {
+            const unsigned char *row = rgb + row_bytes * size_t(y);
+            if (have_last && std::memcmp(row, &enc.last[row_bytes * size_t(y)], row_bytes) == 0)
+                continue;
+            for (int x = 0; x < width; x++, row += 3)
+                enc.image->SetRGBFTValue(x, y, row[0] / 255.0f, row[1] / 255.0f, row[2] / 255.0f,
                                          0.0f, 0.0f);
+        }
+        enc.last.assign(rgb, rgb + row_bytes * size_t(height));
         pov_base::Image::WriteOptions options;
         options.bpcc = 8;
         options.compress = rle ? 1 : 0;
