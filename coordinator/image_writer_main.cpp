@@ -51,13 +51,15 @@ const uint32_t kReplyMagic = 0x31524346;      // "FCR1"
 const int kRequests = 3, kReplies = 4;
 const int kMaxSide = 1 << 16;                 // POV-Ray's images are at most this wide/high
 
-// POV-Ray's output stream, writing into memory instead of a named file.
+// POV-Ray's output stream, writing into a buffer kept from frame to frame (a new one each
+// frame was mostly page faults) instead of a named file.
 class MemoryOStream : public pov_base::OStream
 {
 public:
-    MemoryOStream() : pov_base::OStream(pov_base::POV_File_Image_Targa)
+    explicit MemoryOStream(std::vector<char> &buffer)
+        : pov_base::OStream(pov_base::POV_File_Image_Targa)
     {
-        f = open_memstream(&buffer_, &size_);
+        f = fmemopen(buffer.data(), buffer.size(), "w");
         fail = (f == NULL);
     }
     ~MemoryOStream()
@@ -65,24 +67,20 @@ public:
         if (f != NULL)
             fclose(f);
         f = NULL;
-        std::free(buffer_);
     }
 
-    // Flush and close the stream: the bytes are then in data()/size().
-    bool finish()
+    // Flush and close the stream; false if anything failed (the buffer too small included).
+    // size is then the number of bytes written.
+    bool finish(size_t &size)
     {
         bool ok = !fail && f != NULL && fflush(f) == 0 && !ferror(f);
+        long end = ok ? ftell(f) : -1;
         if (f != NULL && fclose(f) != 0)
             ok = false;
         f = NULL;
-        return ok;
+        size = end > 0 ? size_t(end) : 0;
+        return ok && end > 0;
     }
-    const char *data() const { return buffer_; }
-    size_t size() const { return size_; }
-
-private:
-    char *buffer_ = NULL;
-    size_t size_ = 0;
 };
 
 // The values are stored already (v / 255 read back encodes to v): a curve that keeps them, and
@@ -155,13 +153,15 @@ struct Encoder {
     int width = 0, height = 0;
     std::vector<unsigned char> last;    // the bytes the image holds (a row equal to its row
                                         // there is not set again)
+    std::vector<char> file;             // the file written last (its first `size` bytes)
     pov_base::SimpleGammaCurvePtr curve;
     float file_gamma = -1;
 };
 
-// POV-Ray's Targa file of width x height RGB bytes, into file; false with err.
+// POV-Ray's Targa file of width x height RGB bytes, into enc.file's first `size` bytes; false
+// with err.
 bool encode_targa(Encoder &enc, int width, int height, bool rle, float file_gamma,
-                  const unsigned char *rgb, std::string &file, std::string &err)
+                  const unsigned char *rgb, size_t &size, std::string &err)
 {
     try {
         if (!enc.image || enc.width != width || enc.height != height) {
@@ -196,13 +196,14 @@ bool encode_targa(Encoder &enc, int width, int height, bool rle, float file_gamm
         options.workingGamma = pov_base::NeutralGammaCurve::Get();
         options.encodingGamma = enc.curve;
         options.dither = pov_base::GetNoOpDitherHandler();
-        MemoryOStream stream;
+        // Room for the worst run-length encoding (a count byte per pixel) and the footer.
+        enc.file.resize(row_bytes * size_t(height) * 4 / 3 + size_t(height) + 4096);
+        MemoryOStream stream(enc.file);
         pov_base::Targa::Write(&stream, enc.image.get(), options);
-        if (!stream.finish()) {
+        if (!stream.finish(size)) {
             err = "cannot encode Targa into memory";
             return false;
         }
-        file.assign(stream.data(), stream.size());
         return true;
     } catch (const std::exception &e) {
         err = std::string("POV-Ray's Targa writer: ") + e.what();
@@ -246,11 +247,11 @@ int main(int argc, char **argv)
             fprintf(stderr, "fc-image-writer: request cut short\n");
             return 1;
         }
-        std::string file, err;
+        std::string err;
+        size_t size = 0;
         bool ok = encode_targa(encoder, req.width, req.height, req.rle != 0, req.file_gamma,
-                               rgb.data(), file, err);
-        const std::string &out = ok ? file : err;
-        if (!reply(ok ? 1 : 0, out.data(), out.size()))
+                               rgb.data(), size, err);
+        if (!(ok ? reply(1, encoder.file.data(), size) : reply(0, err.data(), err.size())))
             return 1;
     }
 }
