@@ -7,9 +7,9 @@
 // slave's time: a fifth of a 320x240 Newton run on the emulated cluster. This program is
 // POV-Ray's image code from the patched build (libpovray.a and libvfe.a: their objects are
 // compiled for an executable, -fPIE, so they cannot go into a plugin, and the image code
-// reaches most of POV-Ray) with POV-Ray's 22 libraries: about 2 ms to start. The frames are then the files one
-// POV-Ray process writes, header and footer included, as sequence division's already are
-// (patch 0034 sends POV-Ray's own file of a whole frame).
+// reaches most of POV-Ray) with POV-Ray's 22 libraries: about 2 ms to start. The frames are
+// then the files one POV-Ray process writes, header and footer included, as sequence
+// division's already are (patch 0034 sends POV-Ray's own file of a whole frame).
 //
 // The pixels arrive encoded (the frame channel sends what POV-Ray's Targa writer stores,
 // patch 0030): they go into the image as v / 255.0f and are written with a curve that keeps
