@@ -158,8 +158,9 @@ bool Master::probe()
     }
     // OpenEXR's half floats are made by OpenImageIO as the frames arrive; assembled PNG
     // frames are encoded by it.
+    bool assembled_by_writer = encoded_by_image_writer(format_.oiio, format_.pixels);
     if (format_.pixels == PixelType::Half ||
-        (opt_.division != Division::Sequence && !encoded_by_image_writer(format_.oiio, format_.pixels)))
+        (opt_.division != Division::Sequence && !assembled_by_writer))
         preload_image_io();
     // A renderer with the frame channel (the shell-out probe needs it) has frame coherence:
     // the channel's patches come after fc's.
