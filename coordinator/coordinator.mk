@@ -20,7 +20,8 @@ POV_INCLUDES = -DHAVE_CONFIG_H -I$(POV_TREE)/source -I$(POV_TREE)/unix -I$(POV_T
 
 all: $(IMAGE_WRITER)
 
-$(IMAGE_WRITER_OBJ): $(TOP)/coordinator/image_writer_main.cpp $(BIN)/povray-fc
+$(IMAGE_WRITER_OBJ): $(TOP)/coordinator/image_writer_main.cpp $(TOP)/coordinator/image_writer_protocol.h \
+  $(BIN)/povray-fc
 	mkdir -p $(dir $@)
 	PATH=$(CCACHE_PATH):$$PATH g++ $(POV_CXXFLAGS) -Wno-multichar $(POV_CPPFLAGS) $(POV_INCLUDES) -pthread -c $< -o $@
 

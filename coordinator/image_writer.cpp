@@ -1,5 +1,5 @@
 // image_writer.cpp - talking to fc-image-writer (see image_writer.h; the protocol is in
-// image_writer_main.cpp).
+// image_writer_protocol.h).
 #include "image_writer.h"
 
 #include <fcntl.h>
@@ -10,14 +10,15 @@
 #include <cstring>
 #include <mutex>
 
+#include "image_writer_protocol.h"
 #include "util.h"
 
 namespace fc {
 
 namespace {
 
-const uint32_t kRequestMagic = 0x31574346;    // "FCW1"
-const uint32_t kReplyMagic = 0x31524346;      // "FCR1"
+using fc_image_writer::kReplyMagic;
+using fc_image_writer::kRequestMagic;
 // A frame takes the helper milliseconds; this bound only keeps a hung helper from hanging
 // the master.
 const double kTimeout = 60.0;
@@ -42,7 +43,8 @@ struct Helper {
             return sys_fail(err, "pipe2");
         }
         bool ok = start_child({self_dir() + "/fc-image-writer"}, "", 0, child, err,
-                              {{3, req[0]}, {4, rep[1]}});
+                              {{fc_image_writer::kRequestFd, req[0]},
+                               {fc_image_writer::kReplyFd, rep[1]}});
         close(req[0]);
         close(rep[1]);
         if (!ok) {
@@ -103,40 +105,25 @@ struct Helper {
         }
     }
 
-    bool send(const void *buf, size_t n, double deadline, std::string &err)
+    // Write (to the requests) or read (from the replies) all n bytes by the deadline; false
+    // with err.
+    bool transfer(bool sending, void *buf, size_t n, double deadline, std::string &err)
     {
-        const char *p = static_cast<const char *>(buf);
-        while (n > 0) {
-            if (!wait_ready(requests, POLLOUT, deadline, err))
-                return false;
-            ssize_t w = write(requests, p, n);
-            if (w < 0 && (errno == EINTR || errno == EAGAIN))
-                continue;
-            if (w <= 0) {
-                err = "fc-image-writer stopped taking frames" + said();
-                return false;
-            }
-            p += w;
-            n -= size_t(w);
-        }
-        return true;
-    }
-
-    bool receive(void *buf, size_t n, double deadline, std::string &err)
-    {
+        int fd = sending ? requests : replies;
         char *p = static_cast<char *>(buf);
         while (n > 0) {
-            if (!wait_ready(replies, POLLIN, deadline, err))
+            if (!wait_ready(fd, sending ? POLLOUT : POLLIN, deadline, err))
                 return false;
-            ssize_t r = read(replies, p, n);
-            if (r < 0 && (errno == EINTR || errno == EAGAIN))
+            ssize_t done = sending ? write(fd, p, n) : read(fd, p, n);
+            if (done < 0 && (errno == EINTR || errno == EAGAIN))
                 continue;
-            if (r <= 0) {
-                err = "fc-image-writer ended without an answer" + said();
+            if (done <= 0) {
+                err = (sending ? "fc-image-writer stopped taking frames"
+                               : "fc-image-writer ended without an answer") + said();
                 return false;
             }
-            p += r;
-            n -= size_t(r);
+            p += done;
+            n -= size_t(done);
         }
         return true;
     }
@@ -153,19 +140,13 @@ struct Helper {
             return false;
         }
         double deadline = now() + kTimeout;
-        struct {
-            uint32_t magic;
-            int32_t width, height, rle;
-            float file_gamma;
-        } req = {kRequestMagic, width, height, rle ? 1 : 0, float(file_gamma)};
-        struct {
-            uint32_t magic;
-            int32_t ok;
-            uint64_t size;
-        } head;
+        fc_image_writer::Request req = {kRequestMagic, width, height, rle ? 1 : 0,
+                                        float(file_gamma)};
+        fc_image_writer::Reply head;
         size_t bytes = size_t(width) * size_t(height) * 3;
-        if (!send(&req, sizeof req, deadline, err) || !send(rgb, bytes, deadline, err) ||
-            !receive(&head, sizeof head, deadline, err)) {
+        if (!transfer(true, &req, sizeof req, deadline, err) ||
+            !transfer(true, const_cast<uint8_t *>(rgb), bytes, deadline, err) ||
+            !transfer(false, &head, sizeof head, deadline, err)) {
             fail(err);
             return false;
         }
@@ -177,7 +158,7 @@ struct Helper {
             return false;
         }
         out.resize(size_t(head.size));
-        if (!receive(out.data(), out.size(), deadline, err)) {
+        if (!transfer(false, out.data(), out.size(), deadline, err)) {
             fail(err);
             return false;
         }
@@ -208,7 +189,9 @@ Helper &helper()
 
 bool image_writer_present()
 {
-    return is_executable(self_dir() + "/fc-image-writer");
+    // Asked for every frame: the answer for the whole run.
+    static const bool present = is_executable(self_dir() + "/fc-image-writer");
+    return present;
 }
 
 bool writer_encode_targa(int width, int height, bool rle, double file_gamma, const uint8_t *rgb,

@@ -16,12 +16,7 @@
 // them and no dither, so every stored value passes through unchanged (floor(x * 255 + 0.5)
 // = v), and the file records the gamma the renderer's file would (patch 0039).
 //
-// Protocol, on descriptors 3 (requests) and 4 (replies), native byte order (same machine):
-//   request: uint32 kRequestMagic, int32 width, int32 height, int32 rle (0 or 1),
-//            float file_gamma (what the file records; <= 0: 1.0),
-//            then width * height * 3 bytes (RGB, rows top first)
-//   reply:   uint32 kReplyMagic, int32 ok (1 or 0), uint64 size, then size bytes: the file,
-//            or the error message when ok is 0
+// Protocol: image_writer_protocol.h.
 // The program ends at the end of its requests (fc-master closed them) or on a broken pipe.
 #include <unistd.h>
 
@@ -44,11 +39,13 @@
 #include "base/image/targa.h"
 #include "povrayfc/encode_memo.h"
 
+#include "image_writer_protocol.h"
+
 namespace {
 
-const uint32_t kRequestMagic = 0x31574346;    // "FCW1"
-const uint32_t kReplyMagic = 0x31524346;      // "FCR1"
-const int kRequests = 3, kReplies = 4;
+using fc_image_writer::kReplyMagic;
+using fc_image_writer::kRequestMagic;
+const int kRequests = fc_image_writer::kRequestFd, kReplies = fc_image_writer::kReplyFd;
 const int kMaxSide = 1 << 16;                 // POV-Ray's images are at most this wide/high
 
 // POV-Ray's output stream, writing into a buffer kept from frame to frame (a new one each
@@ -135,11 +132,7 @@ bool write_fully(int fd, const void *buf, size_t n)
 
 bool reply(int ok, const void *data, uint64_t size)
 {
-    struct {
-        uint32_t magic;
-        int32_t ok;
-        uint64_t size;
-    } head = {kReplyMagic, ok, size};
+    fc_image_writer::Reply head = {kReplyMagic, ok, size};
     return write_fully(kReplies, &head, sizeof head) && write_fully(kReplies, data, size_t(size));
 }
 
@@ -160,8 +153,9 @@ struct Encoder {
 
 // POV-Ray's Targa file of width x height RGB bytes, into enc.file's first `size` bytes; false
 // with err.
+// rgb's bytes are then the image's (enc.last), and rgb holds the previous ones.
 bool encode_targa(Encoder &enc, int width, int height, bool rle, float file_gamma,
-                  const unsigned char *rgb, size_t &size, std::string &err)
+                  std::vector<unsigned char> &rgb, size_t &size, std::string &err)
 {
     try {
         if (!enc.image || enc.width != width || enc.height != height) {
@@ -180,14 +174,14 @@ bool encode_targa(Encoder &enc, int width, int height, bool rle, float file_gamm
         const size_t row_bytes = size_t(width) * 3;
         const bool have_last = enc.last.size() == row_bytes * size_t(height);
         for (int y = 0; y < height; y++) {
-            const unsigned char *row = rgb + row_bytes * size_t(y);
+            const unsigned char *row = rgb.data() + row_bytes * size_t(y);
             if (have_last && std::memcmp(row, &enc.last[row_bytes * size_t(y)], row_bytes) == 0)
                 continue;
             for (int x = 0; x < width; x++, row += 3)
                 enc.image->SetRGBFTValue(x, y, row[0] / 255.0f, row[1] / 255.0f, row[2] / 255.0f,
                                          0.0f, 0.0f);
         }
-        enc.last.assign(rgb, rgb + row_bytes * size_t(height));
+        enc.last.swap(rgb);
         pov_base::Image::WriteOptions options;
         options.bpcc = 8;
         options.compress = rle ? 1 : 0;
@@ -224,11 +218,7 @@ int main(int argc, char **argv)
     Encoder encoder;
     povrayfc::EncodeMemo::SetEnabled(true);
     for (;;) {
-        struct {
-            uint32_t magic;
-            int32_t width, height, rle;
-            float file_gamma;
-        } req;
+        fc_image_writer::Request req;
         bool eof = false;
         if (!read_fully(kRequests, &req, sizeof req, eof)) {
             if (eof)
@@ -249,8 +239,8 @@ int main(int argc, char **argv)
         }
         std::string err;
         size_t size = 0;
-        bool ok = encode_targa(encoder, req.width, req.height, req.rle != 0, req.file_gamma,
-                               rgb.data(), size, err);
+        bool ok = encode_targa(encoder, req.width, req.height, req.rle != 0, req.file_gamma, rgb,
+                               size, err);
         if (!(ok ? reply(1, encoder.file.data(), size) : reply(0, err.data(), err.size())))
             return 1;
     }
