@@ -652,7 +652,10 @@ void Master::fatal(const std::string &msg)
     shutdown_slaves();
 }
 
-// Tell every slave to quit, wait (bounded) for them to go, kill stragglers.
+// Tell every slave to quit, wait (bounded) for the ones on this host to go, kill stragglers.
+// Slaves elsewhere are not waited for: they exit on FC_QUIT, or on FC_MASTEREXIT should the
+// quit be lost, and their pvmd reports the exit only once the slave's host has run it (on a
+// loaded host, or one held to a CPU quota, tens of milliseconds after its last frame).
 void Master::shutdown_slaves()
 {
     std::vector<int> live;
@@ -664,9 +667,15 @@ void Master::shutdown_slaves()
             send_packed(tid, FC_QUIT);
     double deadline = now() + 5;
     std::set<int> waiting;
-    for (int tid : live)
-        if (cluster_.slave(tid)->state != SlaveState::Gone)
+    for (int tid : live) {
+        SlaveInfo *s = cluster_.slave(tid);
+        if (s->state == SlaveState::Gone)
+            continue;
+        if (s->dtid == cluster_.my_host())
             waiting.insert(tid);
+        else
+            s->state = SlaveState::Gone;
+    }
     while (!waiting.empty() && now() < deadline) {
         struct timeval tv = {0, 200000};
         int buf = pvm_trecv(-1, FC_TASKEXIT, &tv);
@@ -682,10 +691,8 @@ void Master::shutdown_slaves()
         }
     }
     for (int tid : waiting) {
-        SlaveInfo *s = cluster_.slave(tid);
-        if (s && s->dtid == cluster_.my_host())   // remote ones exit on FC_MASTEREXIT
-            pvm_sendsig(tid, SIGKILL);
-        if (s)
+        pvm_sendsig(tid, SIGKILL);
+        if (SlaveInfo *s = cluster_.slave(tid))
             s->state = SlaveState::Gone;
     }
 }
