@@ -14,6 +14,12 @@
 # a loopback address). --half puts the listed hosts' sshd (so their pvmd and tasks) in a
 # cgroup-v1 CPU quota of half a core, --full of one core: a cluster of unequal machines, like
 # the paper's. LIST is host numbers or names, comma separated: "2,3" or "fch2,fch3".
+# Hosts with a quota are also pinned (a cgroup-v1 cpuset) when the machine has the processors:
+# a --full host gets one of its own, --half hosts share one two by two. A real machine's
+# processes never wait for another machine's, and a host held to one core must not run on
+# two at once: the kernel then throttles it for the rest of its 100 ms period (Newton alone on
+# a full-core host took 1.08-1.12x as long unpinned). Without enough processors, or without
+# the cpuset controller, the hosts are not pinned (a note says so).
 #
 # Several clusters can be up at once, one per state directory ($PVM_NETNS_STATE, default
 # /tmp/pvm-netns). Each `up` takes the first free slot K (0..15) and names everything after it:
@@ -21,7 +27,8 @@
 #   slot K:  hosts fcKh1..fcKhN master fcKmaster  bridge fcbrK  addresses 10.231.K.x
 # so a first cluster gets the familiar names and a second one (a test run while a user's
 # cluster is up) gets others. `env` says which names this cluster got (PVM_NETNS_HOSTS,
-# PVM_NETNS_MASTER). The CPU cgroups are $CGROUP_CPU/fc-netns-<host>.
+# PVM_NETNS_MASTER). The CPU cgroups are $CGROUP_CPU/fc-netns-<host>, the cpusets
+# $CGROUP_CPUSET/fc-netns-<host>: a process joins a host by writing its pid into both.
 #
 # Then:   eval "$(scripts/pvm-netns-hosts.sh env)"
 #         printf 'add %s\nquit\n' "$PVM_NETNS_HOSTS" | pvm -n$PVM_NETNS_MASTER
@@ -57,6 +64,7 @@ NET_PREFIX=10.231
 MAX_SLOT=15
 MARK_BASE="# pvm-netns-hosts"
 CGROUP_CPU=/sys/fs/cgroup/cpu
+CGROUP_CPUSET=/sys/fs/cgroup/cpuset
 
 die() { echo "pvm-netns-hosts.sh: $*" >&2; exit 1; }
 note() { echo "pvm-netns-hosts.sh: $*" >&2; }
@@ -210,6 +218,49 @@ slot_free() {   # slot: true when nothing on the machine uses its names or addre
     ! grep -Eq "[[:space:]](${prefix}h[0-9]+|$master)([[:space:]]|\$)" /etc/hosts || return 1
     for cg in "$CGROUP_CPU/fc-netns-${prefix}h"*; do
         [ ! -e "$cg" ] || return 1
+    done
+}
+
+expand_cpus() {  # a cpuset list ("0-3,6"): one processor number per line
+    echo "$1" | tr ',' '\n' | while IFS=- read -r lo hi; do
+        [ -n "$lo" ] || continue
+        k=$lo
+        while [ "$k" -le "${hi:-$lo}" ]; do echo "$k"; k=$((k + 1)); done
+    done
+}
+
+# Pin the hosts of $quota_hosts ("N:quota" items): full ones a processor each, half ones two
+# to a processor, in the order of the machine's processors.
+pin_hosts() {
+    [ -f "$CGROUP_CPUSET/cpuset.cpus" ] || { note "no cpuset controller at $CGROUP_CPUSET: hosts not pinned"; return 0; }
+    cpus=$(expand_cpus "$(cat "$CGROUP_CPUSET/cpuset.cpus")")
+    fulls=""; halves=""
+    for item in $quota_hosts; do
+        if [ "${item#*:}" = 100000 ]; then fulls="$fulls ${item%%:*}"; else halves="$halves ${item%%:*}"; fi
+    done
+    nfull=$(echo $fulls | wc -w); nhalf=$(echo $halves | wc -w)
+    need=$((nfull + (nhalf + 1) / 2))
+    if [ "$need" -gt "$(echo $cpus | wc -w)" ]; then
+        note "$need processors needed to pin the hosts, $(echo $cpus | wc -w) here: hosts not pinned"
+        return 0
+    fi
+    set -- $cpus
+    assignments=""
+    for k in $fulls; do assignments="$assignments $k:$1"; shift; done
+    paired=""
+    for k in $halves; do
+        assignments="$assignments $k:$1"
+        if [ -n "$paired" ]; then paired=""; shift; else paired=1; fi
+    done
+    for item in $assignments; do
+        h=${prefix}h${item%%:*}
+        cs="$CGROUP_CPUSET/fc-netns-$h"
+        [ ! -e "$cs" ] || die "cpuset $cs exists already (another cluster's, or left behind)"
+        record cgroup "$cs"
+        mkdir "$cs"
+        echo "${item#*:}" > "$cs/cpuset.cpus"
+        cat "$CGROUP_CPUSET/cpuset.mems" > "$cs/cpuset.mems"
+        cat "$STATE/sshd-$h.pid" > "$cs/cgroup.procs"
     done
 }
 
@@ -375,6 +426,7 @@ up() {
         echo "${item#*:}" > "$cg/cpu.cfs_quota_us"
         cat "$STATE/sshd-$h.pid" > "$cg/cgroup.procs"
     done
+    [ -z "$quota_hosts" ] || pin_hosts
 
     {
         echo "export PVM_ROOT=/usr/lib/pvm3"

@@ -15,6 +15,7 @@ from fcutil import TOP
 
 SCRIPT = TOP / "scripts" / "pvm-netns-hosts.sh"
 CGROUP_CPU = Path("/sys/fs/cgroup/cpu")
+CGROUP_CPUSET = Path("/sys/fs/cgroup/cpuset")
 
 
 def netns_usable():
@@ -75,8 +76,9 @@ def assert_gone(cluster):
     assert not set(cluster.hosts) & namespaces()
     for name in [cluster.master] + cluster.hosts:
         assert resolve(name) is None, name
-    assert not [p for p in CGROUP_CPU.glob("fc-netns-*") if p.name[len("fc-netns-"):]
-                in cluster.hosts]
+    for tree in (CGROUP_CPU, CGROUP_CPUSET):
+        assert not [p for p in tree.glob("fc-netns-*") if p.name[len("fc-netns-"):]
+                    in cluster.hosts]
     assert not Path(cluster.state).exists()
 
 
@@ -116,6 +118,15 @@ def test_two_clusters_and_down_removes_only_its_own(states):
     second.assert_up()
     half = CGROUP_CPU / f"fc-netns-{second.hosts[1]}"
     assert (half / "cpu.cfs_quota_us").read_text().strip() == "50000"
+    if (CGROUP_CPUSET / "cpuset.cpus").exists():
+        # The half-core host is pinned to one processor, and what runs on it stays there;
+        # the host without a quota is not pinned.
+        pinned = (CGROUP_CPUSET / f"fc-netns-{second.hosts[1]}" / "cpuset.cpus").read_text().strip()
+        assert pinned.isdigit()
+        r = subprocess.run([second.rsh, second.hosts[1], "grep Cpus_allowed_list /proc/self/status"],
+                           capture_output=True, text=True, timeout=30)
+        assert r.stdout.split() == ["Cpus_allowed_list:", pinned], r.stdout + r.stderr
+        assert not (CGROUP_CPUSET / f"fc-netns-{second.hosts[0]}").exists()
 
     # `down` of a state directory that never had hosts removes nothing.
     r = script(c, "down")
@@ -180,3 +191,20 @@ def test_bad_arguments(tmp_path, args, message):
     assert r.returncode == 1, r.stderr
     assert r.stderr.startswith("pvm-netns-hosts.sh: ") and message in r.stderr, r.stderr
     assert not state.exists()
+
+
+@needs_netns
+@pytest.mark.skipif(not (CGROUP_CPUSET / "cpuset.cpus").exists() or (os.cpu_count() or 1) < 2,
+                    reason="needs the cpuset controller and two processors")
+def test_full_host_gets_a_processor_of_its_own_half_hosts_share_one(states):
+    state = states("pinned")
+    r = script(state, "up", "3", "--full", "1", "--half", "2,3")
+    assert r.returncode == 0, r.stderr
+    cluster = Cluster(state)
+    cpus = [(CGROUP_CPUSET / f"fc-netns-{h}" / "cpuset.cpus").read_text().strip()
+            for h in cluster.hosts]
+    assert all(c.isdigit() for c in cpus), cpus
+    assert cpus[1] == cpus[2] != cpus[0]
+    r = script(state, "down")
+    assert r.returncode == 0, r.stderr
+    assert_gone(cluster)
