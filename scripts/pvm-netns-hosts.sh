@@ -1,7 +1,8 @@
 #!/bin/sh
 # pvm-netns-hosts.sh - several real PVM hosts on one machine, in network namespaces.
 #
-#   scripts/pvm-netns-hosts.sh up [N] [--half LIST] [--full LIST]   create N hosts (default 3)
+#   scripts/pvm-netns-hosts.sh up [N] [--half LIST] [--full LIST] [--no-pin]
+#                                          create N hosts (default 3)
 #   scripts/pvm-netns-hosts.sh down        remove what `up` with this state directory created
 #   scripts/pvm-netns-hosts.sh env         print the exports for a shell
 #   scripts/pvm-netns-hosts.sh list        list every cluster of this script on the machine
@@ -19,7 +20,8 @@
 # processes never wait for another machine's, and a host held to one core must not run on
 # two at once: the kernel then throttles it for the rest of its 100 ms period (Newton alone on
 # a full-core host took 1.08-1.12x as long unpinned). Without enough processors, or without
-# the cpuset controller, the hosts are not pinned (a note says so).
+# the cpuset controller, the hosts are not pinned (a note says so); --no-pin: never (to
+# compare with the emulation before the pinning).
 #
 # Several clusters can be up at once, one per state directory ($PVM_NETNS_STATE, default
 # /tmp/pvm-netns). Each `up` takes the first free slot K (0..15) and names everything after it:
@@ -289,8 +291,10 @@ up() {
     n=3
     half=""
     full=""
+    pin=1
     while [ $# -gt 0 ]; do
         case "$1" in
+            --no-pin) pin=""; shift ;;
             --half|--full)
                 [ $# -ge 2 ] || die "$1 needs a host list"
                 if [ "$1" = --half ]; then half=$2; else full=$2; fi
@@ -426,7 +430,7 @@ up() {
         echo "${item#*:}" > "$cg/cpu.cfs_quota_us"
         cat "$STATE/sshd-$h.pid" > "$cg/cgroup.procs"
     done
-    [ -z "$quota_hosts" ] || pin_hosts
+    [ -z "$quota_hosts" ] || [ -z "$pin" ] || pin_hosts
 
     {
         echo "export PVM_ROOT=/usr/lib/pvm3"
