@@ -75,9 +75,10 @@ size_t FrameAssembly::encoded_size(bool &exact) const
     return frame_bytes_bound();
 }
 
-uint64_t FrameAssembly::pixels_hash(const std::vector<uint8_t> &samples)
+uint64_t FrameAssembly::pixels_hash(const std::vector<uint8_t> &samples, bool words)
 {
-    return hash_bytes(samples.data(), samples.size());
+    return words ? hash_words(samples.data(), samples.size())
+                 : hash_bytes(samples.data(), samples.size());
 }
 
 bool FrameAssembly::verify(int index, bool adopt, std::string &why,
@@ -108,8 +109,9 @@ bool FrameAssembly::verify(int index, bool adopt, std::string &why,
         }
     }
     uint64_t recorded = 0;
-    if (dir_.recorded(base_name(path), recorded)) {
-        if (recorded != pixels_hash(pixels)) {
+    bool words = true;
+    if (dir_.recorded(base_name(path), recorded, words)) {
+        if (recorded != pixels_hash(pixels, words)) {
             why = "its pixels are not those fc-master wrote";
             return false;
         }

@@ -47,8 +47,9 @@ public:
     // frame that exists but is not accepted. pixels receives the decoded samples.
     bool verify(int index, bool adopt, std::string &why, std::vector<uint8_t> &pixels) const;
 
-    // Hash of a frame's stored samples, as the journal records it.
-    static uint64_t pixels_hash(const std::vector<uint8_t> &samples);
+    // Hash of a frame's stored samples, as the journal records it (words: hash_words, else
+    // hash_bytes, which journals of earlier versions hold).
+    static uint64_t pixels_hash(const std::vector<uint8_t> &samples, bool words = true);
 
     // Remove temporary files a killed master left behind for our frames.
     void remove_stale_temps() const;

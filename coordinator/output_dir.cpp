@@ -110,8 +110,14 @@ bool OutputDir::load(std::string &err)
                 continue;
             char *end = nullptr;
             uint64_t h = strtoull(line.c_str() + sp + 1, &end, 16);
-            if (end && *end == '\0')
-                frames_[line.substr(0, sp)] = h;
+            if (!end || *end != '\0')
+                continue;
+            // A frame's name ends in its extension, never in " w1".
+            std::string name = line.substr(0, sp);
+            bool words = ends_with(name, " w1");
+            if (words)
+                name.resize(name.size() - 3);
+            frames_[name] = Recorded{h, words};
         }
     }
     return true;
@@ -173,25 +179,26 @@ std::string OutputDir::journal_path() const
     return meta_ + "/" + run_ + ".frames";
 }
 
-bool OutputDir::recorded(const std::string &name, uint64_t &hash) const
+bool OutputDir::recorded(const std::string &name, uint64_t &hash, bool &words) const
 {
     auto it = frames_.find(name);
     if (it == frames_.end())
         return false;
-    hash = it->second;
+    hash = it->second.hash;
+    words = it->second.words;
     return true;
 }
 
 bool OutputDir::record(const std::string &name, uint64_t hash, std::string &err)
 {
-    std::string line = strf("%s %016" PRIx64 "\n", name.c_str(), hash);
+    std::string line = strf("%s w1 %016" PRIx64 "\n", name.c_str(), hash);
     ssize_t n = write(journal_fd_, line.data(), line.size());
     if (n != ssize_t(line.size())) {
         if (n >= 0)
             errno = ENOSPC;
         return sys_fail(err, "write " + journal_path());
     }
-    frames_[name] = hash;
+    frames_[name] = Recorded{hash, true};
     return true;
 }
 

@@ -9,7 +9,8 @@
 //                 POV-Ray's resolved options that shape pixels, the renderer's version line,
 //                 one "key<TAB>value" line each; a resume whose manifest differs is refused
 //                 (--force starts over), so frames of two different renders never mix;
-//   RUN.frames    one line per frame written ("name hash"): the hash of its stored pixels, so
+//   RUN.frames    one line per frame written ("name w1 hash"): the hash of its stored pixels
+//                 (hash_words; "name hash", from before the thirteenth session: hash_bytes), so
 //                 a resume trusts a frame only if it decodes completely to the same pixels.
 #pragma once
 
@@ -43,10 +44,11 @@ public:
     // Replace the manifest; with fresh, also forget every recorded frame (--force, a new run).
     bool start_run(const Manifest &now, bool fresh, std::string &err);
 
-    // The recorded hash of a frame file (by name); false when none is recorded.
-    bool recorded(const std::string &name, uint64_t &hash) const;
+    // The recorded hash of a frame file (by name), and whether it is hash_words' (else
+    // hash_bytes', as recorded before); false when none is recorded.
+    bool recorded(const std::string &name, uint64_t &hash, bool &words) const;
 
-    // Record a frame that is complete under its final name. False with err.
+    // Record a frame that is complete under its final name, with its hash_words. False with err.
     bool record(const std::string &name, uint64_t hash, std::string &err);
 
 private:
@@ -58,7 +60,11 @@ private:
     int lock_fd_ = -1;
     int journal_fd_ = -1;
     Manifest previous_;
-    std::map<std::string, uint64_t> frames_;
+    struct Recorded {
+        uint64_t hash;
+        bool words;
+    };
+    std::map<std::string, Recorded> frames_;
 };
 
 } // namespace fc

@@ -75,22 +75,31 @@ void Preview::add(int index, const std::vector<uint8_t> &samples)
         samples.size() != size_t(width_) * size_t(height_) * 3 * pixel_type_bytes(type_))
         return;
     to_rgb8(samples, latest_);
-    int cx = (index % cols_) * tw_, cy = (index / cols_) * th_;
-    size_t stride = size_t(cols_ * tw_) * 3;
-    for (int y = 0; y < th_; y++) {
-        for (int x = 0; x < tw_; x++) {
-            unsigned sum[3] = {0, 0, 0};
-            for (int dy = 0; dy < factor_; dy++)
-                for (int dx = 0; dx < factor_; dx++) {
-                    const uint8_t *p = &latest_[(size_t(y * factor_ + dy) * size_t(width_) +
-                                                 size_t(x * factor_ + dx)) * 3];
+    // Box filter into the frame's cell, a row of sums at a time. The mean is rounded as
+    // (sum + cells / 2) / cells, but by multiplying: an integer division per channel took
+    // 0.5 ms a 320x240 frame, a fifth of fc-master's CPU in a frame division. Exact: the
+    // quotient of integers is at least 0.5 / cells away from an integer once 0.5 is added.
+    const int factor = factor_, tw = tw_, th = th_;
+    const unsigned cells = unsigned(factor * factor);
+    const double inverse = 1.0 / double(cells);
+    const size_t src_row = size_t(width_) * 3, sheet_row = size_t(cols_ * tw) * 3;
+    const uint8_t *src = latest_.data();
+    uint8_t *cell = sheet_.data() + size_t((index / cols_) * th) * sheet_row +
+                    size_t((index % cols_) * tw) * 3;
+    std::vector<unsigned> sums(size_t(tw) * 3);
+    for (int y = 0; y < th; y++) {
+        std::fill(sums.begin(), sums.end(), 0u);
+        for (int dy = 0; dy < factor; dy++) {
+            const uint8_t *p = src + size_t(y * factor + dy) * src_row;
+            for (int x = 0; x < tw; x++) {
+                unsigned *sum = &sums[size_t(x) * 3];
+                for (int dx = 0; dx < factor; dx++, p += 3)
                     sum[0] += p[0], sum[1] += p[1], sum[2] += p[2];
-                }
-            uint8_t *d = &sheet_[size_t(cy + y) * stride + size_t(cx + x) * 3];
-            unsigned cells = unsigned(factor_ * factor_);
-            for (int c = 0; c < 3; c++)
-                d[c] = uint8_t((sum[c] + cells / 2) / cells);
+            }
         }
+        uint8_t *d = cell + size_t(y) * sheet_row;
+        for (size_t i = 0; i < sums.size(); i++)
+            d[i] = uint8_t(unsigned((double(sums[i] + cells / 2) + 0.5) * inverse));
     }
     dirty_ = true;
 }

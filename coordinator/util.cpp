@@ -323,6 +323,28 @@ uint64_t hash_bytes(const void *data, size_t size, uint64_t h)
     return h;
 }
 
+uint64_t hash_words(const void *data, size_t size)
+{
+    const unsigned char *p = static_cast<const unsigned char *>(data);
+    auto mix = [](uint64_t h, uint64_t word) {
+        h ^= word;
+        h *= 0x9e3779b97f4a7c15ull;
+        return h ^ (h >> 32);
+    };
+    uint64_t h = mix(0x6672616d65730000ull, uint64_t(size));   // "frames", then the length
+    size_t i = 0;
+    for (; i + 8 <= size; i += 8) {
+        uint64_t word = 0;
+        for (int b = 7; b >= 0; b--)    // little-endian on every machine (one load on x86)
+            word = (word << 8) | p[i + size_t(b)];
+        h = mix(h, word);
+    }
+    uint64_t tail = 0;      // the last size % 8 bytes (the length, mixed first, tells them
+    for (size_t b = size; b > i; b--)       // from zeros)
+        tail = (tail << 8) | p[b - 1];
+    return mix(h, tail);
+}
+
 bool read_text(const std::string &path, std::string &text, std::string &err)
 {
     FILE *f = fopen(path.c_str(), "r");
@@ -539,6 +561,11 @@ std::string trim(const std::string &s)
 bool starts_with(const std::string &s, const std::string &prefix)
 {
     return s.compare(0, prefix.size(), prefix) == 0;
+}
+
+bool ends_with(const std::string &s, const std::string &suffix)
+{
+    return s.size() >= suffix.size() && s.compare(s.size() - suffix.size(), suffix.size(), suffix) == 0;
 }
 
 void install_signal_handlers(void (*handler)(int))

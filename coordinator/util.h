@@ -75,6 +75,11 @@ std::string human_bytes(double bytes);
 // A 64-bit FNV-1a hash of bytes (stable across versions and machines: it goes into files).
 uint64_t hash_bytes(const void *data, size_t size, uint64_t seed = 14695981039346656037ull);
 
+// A 64-bit hash of bytes taken eight at a time (little-endian words; stable across versions
+// and machines too): for frames' pixels, where FNV-1a's byte at a time cost fc-master 0.4 ms
+// a 320x240 frame.
+uint64_t hash_words(const void *data, size_t size);
+
 // Read a whole file into text; false with err.
 bool read_text(const std::string &path, std::string &text, std::string &err);
 
@@ -129,5 +134,6 @@ std::string trim(const std::string &s);
 // must give EPIPE, not kill the process).
 void install_signal_handlers(void (*handler)(int));
 bool starts_with(const std::string &s, const std::string &prefix);
+bool ends_with(const std::string &s, const std::string &suffix);
 
 } // namespace fc

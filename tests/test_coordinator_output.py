@@ -239,6 +239,39 @@ def test_resume_renders_damaged_frames_again(coordinator, coordinator_references
     assert_frames_exact(out, coordinator_references.frames(SCENE, SMALL))
 
 
+def fnv1a64(data):
+    """64-bit FNV-1a: how fc-master hashed a frame's pixels before the thirteenth session."""
+    h = 14695981039346656037
+    for byte in data:
+        h = ((h ^ byte) * 1099511628211) & 0xFFFFFFFFFFFFFFFF
+    return h
+
+
+def test_resume_trusts_the_record_of_an_earlier_version(coordinator, coordinator_references,
+                                                        tmp_path):
+    out = tmp_path / "out"
+    args = ["--no-fc", "--quiet", "--slaves", "2", SCENE] + SMALL + ["-o", str(out)]
+    assert coordinator.run(args).returncode == 0
+    # The record as an earlier fc-master wrote it: "name hash", FNV-1a of the stored pixels
+    # (8-bit RGB, rows top first), instead of "name w1 hash".
+    [journal] = (out / ".fc-master").glob("*.frames")
+    lines = journal.read_text().splitlines()
+    assert lines and all(len(line.split(" ")) == 3 and line.split(" ")[1] == "w1"
+                         for line in lines), lines
+    journal.write_text("".join("%s %016x\n" % (name, fnv1a64(load_rgb(out / name).tobytes()))
+                               for name in (line.split(" ")[0] for line in lines)))
+    damage(out)
+    stats = tmp_path / "stats.json"
+    r = coordinator.run(args[1:] + ["--stats", str(stats)])
+    assert r.returncode == 0, r.stderr
+    # Invariant: frames an earlier version recorded are kept when their pixels hash as it
+    # hashed them, and rendered again when they do not.
+    assert "moving2.tga" in r.stderr and "moving5.tga" in r.stderr, r.stderr
+    s = coordinator_stats(stats)
+    assert s["frames_resumed"] == 6 and s["frames_rendered"] == 2
+    assert_frames_exact(out, coordinator_references.frames(SCENE, SMALL))
+
+
 def test_resume_without_record_checks_each_frame(coordinator, coordinator_references,
                                                  tmp_path):
     # Frames that fc-master has no record of (one POV-Ray process wrote them, say) are kept
