@@ -128,9 +128,8 @@ struct Helper {
         return true;
     }
 
-    bool encode(fc_image_writer::Format format, int width, int height, bool rle,
-                double file_gamma, const uint8_t *rgb, std::vector<uint8_t> &out,
-                std::string &err)
+    bool encode(int width, int height, bool rle, double file_gamma, const uint8_t *rgb,
+                std::vector<uint8_t> &out, std::string &err)
     {
         if (failed) {
             err = why;
@@ -141,7 +140,7 @@ struct Helper {
             return false;
         }
         double deadline = now() + kTimeout;
-        fc_image_writer::Request req = {kRequestMagic, format, width, height, rle ? 1 : 0,
+        fc_image_writer::Request req = {kRequestMagic, width, height, rle ? 1 : 0,
                                         float(file_gamma)};
         fc_image_writer::Reply head;
         size_t bytes = size_t(width) * size_t(height) * 3;
@@ -152,10 +151,8 @@ struct Helper {
             return false;
         }
         // A Targa file is its pixels plus at most a byte per 128 of them and 1 KiB of header
-        // and footer; a PNG deflated fast its rows (a filter byte each) plus a few bytes per
-        // 8 KiB chunk and 64 KiB block, and its header and text; a message is short.
-        if (head.magic != kReplyMagic ||
-            head.size > bytes + bytes / 128 + size_t(height) + 8192) {
+        // and footer; a message is short.
+        if (head.magic != kReplyMagic || head.size > bytes + bytes / 128 + 4096) {
             err = "fc-image-writer sent a malformed reply";
             fail(err);
             return false;
@@ -202,16 +199,7 @@ bool writer_encode_targa(int width, int height, bool rle, double file_gamma, con
 {
     Helper &h = helper();
     std::lock_guard<std::mutex> lock(h.mutex);
-    return h.encode(fc_image_writer::kTarga, width, height, rle, file_gamma, rgb, out, err);
-}
-
-bool writer_encode_preview_png(int width, int height, const uint8_t *rgb,
-                               std::vector<uint8_t> &out, std::string &err)
-{
-    Helper &h = helper();
-    std::lock_guard<std::mutex> lock(h.mutex);
-    // The values are gamma-encoded for the eye (preview.h): the file says 2.2.
-    return h.encode(fc_image_writer::kPreviewPng, width, height, false, 2.2, rgb, out, err);
+    return h.encode(width, height, rle, file_gamma, rgb, out, err);
 }
 
 void stop_image_writer()

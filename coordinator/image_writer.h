@@ -1,7 +1,6 @@
-// image_writer.h - fc-master's end of fc-image-writer: Targa frames and the preview's PNG
-// files encoded by POV-Ray's own writers in a helper process beside fc-master
-// (image_writer_main.cpp says why: OpenImageIO's load costs the master's host 0.4 s of CPU,
-// the helper 2 ms).
+// image_writer.h - fc-master's end of fc-image-writer: Targa frames encoded by POV-Ray's own
+// writer in a helper process beside fc-master (image_writer_main.cpp says why: OpenImageIO's
+// load costs the master's host 0.4 s of CPU, the helper 2 ms).
 //
 // The helper starts on first use and serves the whole run. Whatever goes wrong with it (not
 // built, killed, a malformed reply) makes it unusable for the rest of the run with a reason,
@@ -23,12 +22,6 @@ bool image_writer_present();
 // used again.
 bool writer_encode_targa(int width, int height, bool rle, double file_gamma, const uint8_t *rgb,
                          std::vector<uint8_t> &out, std::string &err);
-
-// Encode width x height 8-bit RGB (rows top first) as a preview's PNG, with POV-Ray's PNG
-// writer deflating fast (patch 0040), into out. False with err, after which the helper is not
-// used again.
-bool writer_encode_preview_png(int width, int height, const uint8_t *rgb,
-                               std::vector<uint8_t> &out, std::string &err);
 
 // Close the helper's requests and reap it (it ends at the end of its input).
 void stop_image_writer();

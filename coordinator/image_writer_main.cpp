@@ -16,11 +16,6 @@
 // them and no dither, so every stored value passes through unchanged (floor(x * 255 + 0.5)
 // = v), and the file records the gamma the renderer's file would (patch 0039).
 //
-// It writes the preview's PNG files too (preview.h: the latest frame and the contact sheet),
-// with POV-Ray's PNG writer deflating fast (patch 0040), the same way from 8-bit values: a
-// render of Targa frames then never loads OpenImageIO, whose load was two thirds of
-// fc-master's CPU in a 10-second frame division on 2 cores.
-//
 // Protocol: image_writer_protocol.h.
 // The program ends at the end of its requests (fc-master closed them) or on a broken pipe.
 #include <unistd.h>
@@ -41,7 +36,6 @@
 #include "base/image/colourspace.h"
 #include "base/image/encoding.h"
 #include "base/image/image.h"
-#include "base/image/png_pov.h"
 #include "base/image/targa.h"
 #include "povrayfc/encode_memo.h"
 
@@ -59,8 +53,8 @@ const int kMaxSide = 1 << 16;                 // POV-Ray's images are at most th
 class MemoryOStream : public pov_base::OStream
 {
 public:
-    MemoryOStream(std::vector<char> &buffer, unsigned int type)
-        : pov_base::OStream(type)
+    explicit MemoryOStream(std::vector<char> &buffer)
+        : pov_base::OStream(pov_base::POV_File_Image_Targa)
     {
         f = fmemopen(buffer.data(), buffer.size(), "w");
         fail = (f == NULL);
@@ -157,13 +151,12 @@ struct Encoder {
     float file_gamma = -1;
 };
 
-// POV-Ray's Targa file (format kTarga) or fast-deflated PNG (kPreviewPng) of width x height
-// RGB bytes, into enc.file's first `size` bytes; false with err.
+// POV-Ray's Targa file of width x height RGB bytes, into enc.file's first `size` bytes; false
+// with err.
 // rgb's bytes are then the image's (enc.last), and rgb holds the previous ones.
-bool encode(Encoder &enc, int32_t format, int width, int height, bool rle, float file_gamma,
-            std::vector<unsigned char> &rgb, size_t &size, std::string &err)
+bool encode_targa(Encoder &enc, int width, int height, bool rle, float file_gamma,
+                  std::vector<unsigned char> &rgb, size_t &size, std::string &err)
 {
-    const bool png = format == fc_image_writer::kPreviewPng;
     try {
         if (!enc.image || enc.width != width || enc.height != height) {
             enc.image.reset(pov_base::Image::Create(width, height, pov_base::Image::RGBFT_Float));
@@ -191,29 +184,23 @@ bool encode(Encoder &enc, int32_t format, int width, int height, bool rle, float
         enc.last.swap(rgb);
         pov_base::Image::WriteOptions options;
         options.bpcc = 8;
-        options.compress = rle && !png ? 1 : 0;
-        options.fcFastDeflate = png;
+        options.compress = rle ? 1 : 0;
         // With a neutral working gamma TranscodingGammaCurve::Get gives the encoding curve as
         // it is: the one that keeps the values and records the file's gamma.
         options.workingGamma = pov_base::NeutralGammaCurve::Get();
         options.encodingGamma = enc.curve;
         options.dither = pov_base::GetNoOpDitherHandler();
-        // Room for the worst run-length encoding (a count byte per pixel) and the footer, or
-        // for a PNG of stored deflate blocks, its chunks and text.
-        enc.file.resize(row_bytes * size_t(height) * 4 / 3 + size_t(height) + 8192);
-        MemoryOStream stream(enc.file, png ? pov_base::POV_File_Image_PNG
-                                           : pov_base::POV_File_Image_Targa);
-        if (png)
-            pov_base::Png::Write(&stream, enc.image.get(), options);
-        else
-            pov_base::Targa::Write(&stream, enc.image.get(), options);
+        // Room for the worst run-length encoding (a count byte per pixel) and the footer.
+        enc.file.resize(row_bytes * size_t(height) * 4 / 3 + size_t(height) + 4096);
+        MemoryOStream stream(enc.file);
+        pov_base::Targa::Write(&stream, enc.image.get(), options);
         if (!stream.finish(size)) {
-            err = png ? "cannot encode PNG into memory" : "cannot encode Targa into memory";
+            err = "cannot encode Targa into memory";
             return false;
         }
         return true;
     } catch (const std::exception &e) {
-        err = std::string(png ? "POV-Ray's PNG writer: " : "POV-Ray's Targa writer: ") + e.what();
+        err = std::string("POV-Ray's Targa writer: ") + e.what();
         return false;
     }
 }
@@ -228,9 +215,7 @@ int main(int argc, char **argv)
         return 2;
     }
     std::vector<unsigned char> rgb;
-    // One kept image per kind: frames keep theirs from one frame to the next (the memo);
-    // the preview's latest frame and contact sheet, of other sizes, do not disturb it.
-    Encoder frames, previews;
+    Encoder encoder;
     povrayfc::EncodeMemo::SetEnabled(true);
     for (;;) {
         fc_image_writer::Request req;
@@ -243,8 +228,7 @@ int main(int argc, char **argv)
             return 1;
         }
         if (req.magic != kRequestMagic || req.width <= 0 || req.height <= 0 ||
-            req.width > kMaxSide || req.height > kMaxSide ||
-            (req.format != fc_image_writer::kTarga && req.format != fc_image_writer::kPreviewPng)) {
+            req.width > kMaxSide || req.height > kMaxSide) {
             fprintf(stderr, "fc-image-writer: malformed request\n");
             return 1;
         }
@@ -255,9 +239,8 @@ int main(int argc, char **argv)
         }
         std::string err;
         size_t size = 0;
-        Encoder &encoder = req.format == fc_image_writer::kPreviewPng ? previews : frames;
-        bool ok = encode(encoder, req.format, req.width, req.height, req.rle != 0,
-                         req.file_gamma, rgb, size, err);
+        bool ok = encode_targa(encoder, req.width, req.height, req.rle != 0, req.file_gamma, rgb,
+                               size, err);
         if (!(ok ? reply(1, encoder.file.data(), size) : reply(0, err.data(), err.size())))
             return 1;
     }

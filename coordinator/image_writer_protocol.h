@@ -8,22 +8,16 @@
 
 namespace fc_image_writer {
 
-const uint32_t kRequestMagic = 0x32574346;    // "FCW2"
+const uint32_t kRequestMagic = 0x31574346;    // "FCW1"
 const uint32_t kReplyMagic = 0x31524346;      // "FCR1"
 const int kRequestFd = 3, kReplyFd = 4;       // as the helper sees them
 
-enum Format : int32_t {
-    kTarga = 0,             // a frame: POV-Ray's Targa file
-    kPreviewPng = 1,        // a preview: 8-bit PNG, deflated fast (patch 0040)
-};
-
-// Followed by width * height * 3 bytes: RGB as the file stores them (for Targa, as POV-Ray's
-// Targa writer stores them), rows top first.
+// Followed by width * height * 3 bytes: RGB as POV-Ray's Targa writer stores them, rows top
+// first.
 struct Request {
     uint32_t magic;
-    int32_t format;         // Format
     int32_t width, height;
-    int32_t rle;            // Targa: 1 for run-length encoded
+    int32_t rle;            // 1: run-length encoded Targa
     float file_gamma;       // what the file records (<= 0: 1.0)
 };
 

@@ -8,7 +8,6 @@
 #include <cstdio>
 #include <cstring>
 
-#include "image_writer.h"
 #include "util.h"
 
 namespace fc {
@@ -108,13 +107,8 @@ void Preview::add(int index, const std::vector<uint8_t> &samples)
 bool Preview::write_png(const std::string &name, int w, int h, const std::vector<uint8_t> &rgb,
                         std::string &err)
 {
-    // fc-image-writer's PNG (POV-Ray's writer): no OpenImageIO to load for it. Should the
-    // helper fail, OpenImageIO writes the same pixels (and the helper's failure is said when
-    // a frame needs it).
     std::vector<uint8_t> bytes;
-    std::string why;
-    if (!(image_writer_present() && writer_encode_preview_png(w, h, rgb.data(), bytes, why)) &&
-        !encode_image("png", "fast", w, h, PixelType::U8, rgb.data(), bytes, err))
+    if (!encode_image("png", "fast", w, h, PixelType::U8, rgb.data(), bytes, err))
         return false;
     std::string path = dir_ + "/" + name, tmp = path + ".tmp";
     if (!write_file_durably(tmp, bytes.data(), bytes.size(), err))
@@ -131,10 +125,9 @@ bool Preview::flush(double now, bool force, std::string &err)
     if (!on_ || !dirty_ || (!force && (now < first_ || now - last_ < wait_)) ||
         (force && !written_ && now < first_))
         return true;
-    // Without fc-image-writer, a render whose frames came whole from POV-Ray may not have
-    // OpenImageIO yet: it loads in the background (0.4 s of CPU), and the files are written
-    // at a later call.
-    if (!force && !image_writer_present() && !image_io_ready()) {
+    // A render whose frames came whole from POV-Ray may not have OpenImageIO yet: it loads
+    // in the background (0.4 s of CPU), and the files are written at a later call.
+    if (!force && !image_io_ready()) {
         preload_image_io();
         return true;
     }
