@@ -339,8 +339,10 @@ uint64_t hash_words(const void *data, size_t size)
             word = (word << 8) | p[i + size_t(b)];
         h = mix(h, word);
     }
-    uint64_t tail = 0;      // the last size % 8 bytes (the length, mixed first, tells them
-    for (size_t b = size; b > i; b--)       // from zeros)
+    // The last size % 8 bytes, zero-padded: the length, mixed first, tells the padding from
+    // zero bytes.
+    uint64_t tail = 0;
+    for (size_t b = size; b > i; b--)
         tail = (tail << 8) | p[b - 1];
     return mix(h, tail);
 }

@@ -19,7 +19,8 @@
 # a --full host gets one of its own, --half hosts share one two by two. A real machine's
 # processes never wait for another machine's, and a host held to one core must not run on
 # two at once: the kernel then throttles it for the rest of its 100 ms period (Newton alone on
-# a full-core host took 1.08-1.12x as long unpinned). Without enough processors, or without
+# a full-core host took 1.07x as long unpinned, medians of 5 runs the same hour). Without
+# enough processors, or without
 # the cpuset controller, the hosts are not pinned (a note says so); --no-pin: never (to
 # compare with the emulation before the pinning).
 #
