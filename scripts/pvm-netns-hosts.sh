@@ -20,9 +20,8 @@
 # processes never wait for another machine's, and a host held to one core must not run on
 # two at once: the kernel then throttles it for the rest of its 100 ms period (Newton alone on
 # a full-core host took 1.07x as long unpinned, medians of 5 runs the same hour). Without
-# enough processors, or without
-# the cpuset controller, the hosts are not pinned (a note says so); --no-pin: never (to
-# compare with the emulation before the pinning).
+# enough processors, or without the cpuset controller, the hosts are not pinned (a note says
+# so); --no-pin: never (to compare with the emulation before the pinning).
 #
 # Several clusters can be up at once, one per state directory ($PVM_NETNS_STATE, default
 # /tmp/pvm-netns). Each `up` takes the first free slot K (0..15) and names everything after it:
