@@ -256,14 +256,20 @@ pin_hosts() {
     done
     for item in $assignments; do
         h=${prefix}h${item%%:*}
-        cs="$CGROUP_CPUSET/fc-netns-$h"
-        [ ! -e "$cs" ] || die "cpuset $cs exists already (another cluster's, or left behind)"
-        record cgroup "$cs"
-        mkdir "$cs"
-        echo "${item#*:}" > "$cs/cpuset.cpus"
-        cat "$CGROUP_CPUSET/cpuset.mems" > "$cs/cpuset.mems"
-        cat "$STATE/sshd-$h.pid" > "$cs/cgroup.procs"
+        new_host_cgroup "$CGROUP_CPUSET" "$h"
+        echo "${item#*:}" > "$cg/cpuset.cpus"
+        cat "$CGROUP_CPUSET/cpuset.mems" > "$cg/cpuset.mems"
+        cat "$STATE/sshd-$h.pid" > "$cg/cgroup.procs"
     done
+}
+
+# Make host $2's cgroup in the tree $1 (recorded for `down`) and set cg to it; the caller
+# sets it up and then moves the host's sshd in (a cpuset takes no task before its cpus).
+new_host_cgroup() {
+    cg="$1/fc-netns-$2"
+    [ ! -e "$cg" ] || die "cgroup $cg exists already (another cluster's, or left behind)"
+    record cgroup "$cg"
+    mkdir "$cg"
 }
 
 host_number() {  # item n: the host number of a --half/--full item ("2", "fch2", "fc3h2")
@@ -422,10 +428,7 @@ up() {
 
     for item in $quota_hosts; do
         h=${prefix}h${item%%:*}
-        cg="$CGROUP_CPU/fc-netns-$h"
-        [ ! -e "$cg" ] || die "cgroup $cg exists already (another cluster's, or left behind)"
-        record cgroup "$cg"
-        mkdir "$cg"
+        new_host_cgroup "$CGROUP_CPU" "$h"
         echo 100000 > "$cg/cpu.cfs_period_us"
         echo "${item#*:}" > "$cg/cpu.cfs_quota_us"
         cat "$STATE/sshd-$h.pid" > "$cg/cgroup.procs"

@@ -223,20 +223,31 @@ def damage(out):
     changed.write_bytes(bytes(data))
 
 
-def test_resume_renders_damaged_frames_again(coordinator, coordinator_references, tmp_path):
-    out = tmp_path / "out"
-    args = ["--no-fc", "--quiet", "--slaves", "2", SCENE] + SMALL + ["-o", str(out)]
-    assert coordinator.run(args).returncode == 0
+def small_render_args(out):
+    return ["--no-fc", "--quiet", "--slaves", "2", SCENE] + SMALL + ["-o", str(out)]
+
+
+def assert_resume_renders_damaged_frames_again(coordinator, coordinator_references, tmp_path,
+                                               out):
+    """Damage two frames of the small render in out, resume it, check what it did."""
     damage(out)
     stats = tmp_path / "stats.json"
-    r = coordinator.run(args[1:] + ["--stats", str(stats)])
+    r = coordinator.run(small_render_args(out)[1:] + ["--stats", str(stats)])
     assert r.returncode == 0, r.stderr
-    # Invariant: a frame that is cut short or whose pixels are not those written is rendered
-    # again, with a warning that names it; the others are kept.
+    # Invariant: a frame that is cut short or whose pixels are not those written (by this
+    # version or an earlier one) is rendered again, with a warning that names it; the
+    # others are kept.
     assert "moving2.tga" in r.stderr and "moving5.tga" in r.stderr, r.stderr
     s = coordinator_stats(stats)
     assert s["frames_resumed"] == 6 and s["frames_rendered"] == 2
     assert_frames_exact(out, coordinator_references.frames(SCENE, SMALL))
+
+
+def test_resume_renders_damaged_frames_again(coordinator, coordinator_references, tmp_path):
+    out = tmp_path / "out"
+    assert coordinator.run(small_render_args(out)).returncode == 0
+    assert_resume_renders_damaged_frames_again(coordinator, coordinator_references, tmp_path,
+                                               out)
 
 
 def fnv1a64(data):
@@ -250,8 +261,7 @@ def fnv1a64(data):
 def test_resume_trusts_the_record_of_an_earlier_version(coordinator, coordinator_references,
                                                         tmp_path):
     out = tmp_path / "out"
-    args = ["--no-fc", "--quiet", "--slaves", "2", SCENE] + SMALL + ["-o", str(out)]
-    assert coordinator.run(args).returncode == 0
+    assert coordinator.run(small_render_args(out)).returncode == 0
     # The record as an earlier fc-master wrote it: "name hash", FNV-1a of the stored pixels
     # (8-bit RGB, rows top first), instead of "name w1 hash".
     [journal] = (out / ".fc-master").glob("*.frames")
@@ -260,16 +270,8 @@ def test_resume_trusts_the_record_of_an_earlier_version(coordinator, coordinator
                          for line in lines), lines
     journal.write_text("".join("%s %016x\n" % (name, fnv1a64(load_rgb(out / name).tobytes()))
                                for name in (line.split(" ")[0] for line in lines)))
-    damage(out)
-    stats = tmp_path / "stats.json"
-    r = coordinator.run(args[1:] + ["--stats", str(stats)])
-    assert r.returncode == 0, r.stderr
-    # Invariant: frames an earlier version recorded are kept when their pixels hash as it
-    # hashed them, and rendered again when they do not.
-    assert "moving2.tga" in r.stderr and "moving5.tga" in r.stderr, r.stderr
-    s = coordinator_stats(stats)
-    assert s["frames_resumed"] == 6 and s["frames_rendered"] == 2
-    assert_frames_exact(out, coordinator_references.frames(SCENE, SMALL))
+    assert_resume_renders_damaged_frames_again(coordinator, coordinator_references, tmp_path,
+                                               out)
 
 
 def test_resume_without_record_checks_each_frame(coordinator, coordinator_references,
