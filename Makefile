@@ -29,7 +29,10 @@ POV_TREE  := $(BUILD)/povray
 FC_BUILD  := $(BUILD)/povray-fc
 FC_LIB    := $(FC_BUILD)/libpovrayfc.a
 FC_MASK_PLUGIN := $(FC_BUILD)/povrayfc-mask.so
-FC_SOURCES := $(shell find $(TOP)/povray-fc -type f \( -name '*.cpp' -o -name '*.h' -o -name 'CMakeLists.txt' \) 2>/dev/null)
+# SDL loaded on demand (povray-fc/sdl/): linked whole and before POV-Ray's -lSDL, so the
+# linker's --as-needed (gcc's default here) drops libSDL from the binary.
+FC_SDL_LIB := $(FC_BUILD)/libpovrayfc-sdl.a
+FC_SOURCES := $(shell find $(TOP)/povray-fc -type f \( -name '*.cpp' -o -name '*.c' -o -name '*.h' -o -name 'CMakeLists.txt' \) 2>/dev/null)
 
 PATCHES   := $(TOP)/patches/series $(wildcard $(TOP)/patches/*.patch)
 # Files our patches add to POV-Ray: unix/prebuild.sh lists the sources in the
@@ -101,13 +104,13 @@ $(STAMPS)/patched: $(STAMPS)/unpacked $(PATCHES)
 # Flags (and added files) that, when changed, must re-run prebuild and configure.
 $(STAMPS)/configure-args: FORCE | deps
 	@mkdir -p $(STAMPS)
-	@echo 'g++ via $(CCACHE_PATH) | $(POV_CXXFLAGS) | $(POV_CPPFLAGS) | $(POV_LDFLAGS) | $(FC_LIB) | $(COMPILED_BY) | $(PATCH_NEW_FILES)' > $@.new
+	@echo 'g++ via $(CCACHE_PATH) | $(POV_CXXFLAGS) | $(POV_CPPFLAGS) | $(POV_LDFLAGS) | $(FC_LIB) | $(FC_SDL_LIB) | $(COMPILED_BY) | $(PATCH_NEW_FILES)' > $@.new
 	@if cmp -s $@.new $@; then rm $@.new; else mv $@.new $@; fi
 
 # Configure once per set of flags. Our patches never touch the build system (our
 # code is a separate library), so a patch change does not re-run configure.
 # configure links its test programs with LIBS, so our library must exist first.
-$(STAMPS)/configured: $(STAMPS)/unpacked $(STAMPS)/configure-args | $(STAMPS)/patched $(FC_LIB)
+$(STAMPS)/configured: $(STAMPS)/unpacked $(STAMPS)/configure-args | $(STAMPS)/patched $(FC_LIB) $(FC_SDL_LIB)
 	cd $(POV_TREE)/unix && ./prebuild.sh >$(BUILD)/prebuild.log 2>&1 \
 	  || { echo "make: unix/prebuild.sh failed, see $(BUILD)/prebuild.log" >&2; exit 1; }
 	cd $(POV_TREE) && PATH=$(CCACHE_PATH):$$PATH ./configure --prefix=/usr --sysconfdir=/etc \
@@ -115,7 +118,7 @@ $(STAMPS)/configured: $(STAMPS)/unpacked $(STAMPS)/configure-args | $(STAMPS)/pa
 	  --with-boost-thread=boost_thread \
 	  CC=gcc CXX=g++ \
 	  COMPILED_BY="$(COMPILED_BY)" \
-	  CXXFLAGS="$(POV_CXXFLAGS)" CPPFLAGS="$(POV_CPPFLAGS)" LDFLAGS="$(POV_LDFLAGS)" \
+	  CXXFLAGS="$(POV_CXXFLAGS)" CPPFLAGS="$(POV_CPPFLAGS)" LDFLAGS="$(POV_LDFLAGS) -Wl,--whole-archive $(FC_SDL_LIB) -Wl,--no-whole-archive" \
 	  LIBS="$(FC_LIB)" >$(BUILD)/configure.log 2>&1 \
 	  || { echo "make: configure failed, see $(BUILD)/configure.log" >&2; exit 1; }
 	touch $@
@@ -131,6 +134,10 @@ $(FC_LIB): $(FC_BUILD)/CMakeCache.txt $(FC_SOURCES)
 	cmake --build $(FC_BUILD) -j$(JOBS) --target povrayfc
 	touch $@
 
+$(FC_SDL_LIB): $(FC_BUILD)/CMakeCache.txt $(FC_SOURCES)
+	cmake --build $(FC_BUILD) -j$(JOBS) --target povrayfc-sdl
+	touch $@
+
 # Frame_Coherence_Mask's writer, loaded from beside the binary.
 $(BIN)/povrayfc-mask.so: $(FC_BUILD)/CMakeCache.txt $(FC_SOURCES)
 	cmake --build $(FC_BUILD) -j$(JOBS) --target povrayfc-mask
@@ -139,8 +146,9 @@ $(BIN)/povrayfc-mask.so: $(FC_BUILD)/CMakeCache.txt $(FC_SOURCES)
 # --- the binary --------------------------------------------------------------
 
 # POV-Ray's Makefiles do not know our library: relink when it is newer.
-$(BIN)/povray-fc: $(STAMPS)/patched $(STAMPS)/configured $(FC_LIB) FORCE
-	@if [ -e $(POV_TREE)/unix/povray ] && [ $(FC_LIB) -nt $(POV_TREE)/unix/povray ]; then rm $(POV_TREE)/unix/povray; fi
+$(BIN)/povray-fc: $(STAMPS)/patched $(STAMPS)/configured $(FC_LIB) $(FC_SDL_LIB) FORCE
+	@for lib in $(FC_LIB) $(FC_SDL_LIB); do \
+	  if [ -e $(POV_TREE)/unix/povray ] && [ $$lib -nt $(POV_TREE)/unix/povray ]; then rm $(POV_TREE)/unix/povray; fi; done
 	PATH=$(CCACHE_PATH):$$PATH $(MAKE) -C $(POV_TREE) -j$(JOBS) >$(BUILD)/povray-make.log 2>&1 \
 	  || { tail -30 $(BUILD)/povray-make.log >&2; echo "make: POV-Ray build failed, see $(BUILD)/povray-make.log" >&2; exit 1; }
 	mkdir -p $(BIN)
