@@ -135,6 +135,29 @@ bool encoded_by_image_writer(const std::string &format, PixelType type)
     return format == "targa" && type == PixelType::U8 && image_writer_present();
 }
 
+namespace {
+
+std::function<void(const std::string &)> &warning_handler()
+{
+    static std::function<void(const std::string &)> handler;
+    return handler;
+}
+
+void warn(const std::string &message)
+{
+    if (warning_handler())
+        warning_handler()(message);
+    else
+        fprintf(stderr, "fc-master: warning: %s\n", message.c_str());
+}
+
+} // namespace
+
+void set_image_io_warning_handler(std::function<void(const std::string &)> handler)
+{
+    warning_handler() = std::move(handler);
+}
+
 bool encode_image(const std::string &format, const std::string &compression, int width,
                   int height, PixelType type, const void *pixels, std::vector<uint8_t> &out,
                   std::string &err, double file_gamma)
@@ -148,8 +171,7 @@ bool encode_image(const std::string &format, const std::string &compression, int
         static bool warned = false;
         if (!warned) {
             warned = true;
-            fprintf(stderr, "fc-master: warning: %s; encoding Targa frames with OpenImageIO\n",
-                    why.c_str());
+            warn(why + "; encoding Targa frames with OpenImageIO");
         }
     }
     Plugin *p = nullptr;

@@ -8,6 +8,7 @@
 #pragma once
 
 #include <cstdint>
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -35,6 +36,10 @@ void wait_image_io();
 // Whether encode_image gives this format to fc-image-writer (POV-Ray's own Targa writer, 2 ms
 // to start; image_writer.h) rather than to OpenImageIO: 8-bit Targa, when the helper is there.
 bool encoded_by_image_writer(const std::string &format, PixelType type);
+
+// Where the warnings below go (the message, without "fc-master: warning: "); by default to
+// stderr. fc-master sends them through its report, which first clears its progress line.
+void set_image_io_warning_handler(std::function<void(const std::string &)> handler);
 
 // Encode width x height pixels in an OpenImageIO format ("targa", "png", "openexr") with
 // compression ("" = default, "fast" = the quickest encoding, "rle" for Targa) into out:

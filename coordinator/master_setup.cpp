@@ -494,6 +494,12 @@ void Master::finish(bool ok)
 int Master::run()
 {
     debug_log("master starts");
+    // A warning of the image code (fc-image-writer failed) goes through the report, which
+    // clears the progress line first: it must not be written onto the end of that line.
+    set_image_io_warning_handler([this](const std::string &message) {
+        report_.clear_line();
+        fprintf(stderr, "fc-master: warning: %s\n", message.c_str());
+    });
     if (!resolve_programs() || !probe() || !prepare_output()) {
         if (!tmpdir_.empty())
             remove_tree(tmpdir_);

@@ -32,6 +32,20 @@ def coordinator_renderer():
     return ours if os.access(ours, os.X_OK) else "/usr/bin/povray"
 
 
+def master_with_failing_image_writer(tmp_path):
+    """A copy of fc-master in a directory of its own whose fc-image-writer fails (fc-master
+    finds fc-slave and its helpers beside itself); returns the copy's path."""
+    bindir = tmp_path / "bin"
+    bindir.mkdir()
+    subprocess.run(["cp", FC_MASTER, str(bindir / "fc-master")], check=True)
+    for name in ("fc-slave", "fc-image.so"):
+        os.symlink(os.path.join(os.path.dirname(FC_MASTER), name), bindir / name)
+    writer = bindir / "fc-image-writer"
+    writer.write_text("#!/bin/sh\necho 'cannot encode today' >&2\nexit 1\n")
+    writer.chmod(0o755)
+    return bindir / "fc-master"
+
+
 def coordinator_marked_pids(mark):
     """Pids of live processes whose environment carries FC_TEST_MARK=mark."""
     needle = ("%s=%s" % (MARK_VAR, mark)).encode()
@@ -106,8 +120,8 @@ class CoordinatorRun:
             env.update(extra)
         return env
 
-    def argv(self, args, renderer=True, prefix=()):
-        argv = list(prefix) + [FC_MASTER]
+    def argv(self, args, renderer=True, prefix=(), master=FC_MASTER):
+        argv = list(prefix) + [str(master)]
         if renderer:
             argv += ["--povray", coordinator_renderer()]
         return argv + list(args)

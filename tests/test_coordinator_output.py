@@ -15,7 +15,8 @@ import time
 import numpy as np
 import pytest
 
-from conftest import COORDINATOR_SCENES, FC_MASTER, coordinator_renderer, coordinator_stats, frame_files, load_rgb
+from conftest import (COORDINATOR_SCENES, FC_MASTER, coordinator_renderer, coordinator_stats,
+                      frame_files, load_rgb, master_with_failing_image_writer)
 
 pytestmark = pytest.mark.usefixtures("coordinator_build")
 
@@ -430,18 +431,8 @@ def test_assembled_targa_is_povrays_own_file(coordinator, coordinator_references
 # Should fc-image-writer fail, OpenImageIO encodes the frames: same pixels, one warning.
 def test_failing_image_writer_falls_back_to_openimageio(coordinator, coordinator_references,
                                                         tmp_path):
-    # fc-master finds fc-slave and its helpers beside itself: a copy of it, in a directory
-    # whose fc-image-writer fails.
-    bindir = tmp_path / "bin"
-    bindir.mkdir()
-    subprocess.run(["cp", FC_MASTER, str(bindir / "fc-master")], check=True)
-    for name in ("fc-slave", "fc-image.so"):
-        os.symlink(os.path.join(os.path.dirname(FC_MASTER), name), bindir / name)
-    writer = bindir / "fc-image-writer"
-    writer.write_text("#!/bin/sh\necho 'cannot encode today' >&2\nexit 1\n")
-    writer.chmod(0o755)
     out = tmp_path / "out"
-    argv = [str(bindir / "fc-master"), "--quiet", "--division", "frame", "--tile", "48",
+    argv = [str(master_with_failing_image_writer(tmp_path)), "--quiet", "--division", "frame", "--tile", "48",
             "--slaves", "2", "--povray", coordinator_renderer(), SCENE] + SMALL + ["-o", str(out)]
     r = subprocess.run(argv, cwd=COORDINATOR_SCENES, env=coordinator.env(), capture_output=True,
                        text=True, timeout=90)

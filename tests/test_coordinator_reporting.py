@@ -17,7 +17,8 @@ import time
 
 import pytest
 
-from conftest import COORDINATOR_SCENES, coordinator_renderer, coordinator_stats
+from conftest import (COORDINATOR_SCENES, coordinator_renderer, coordinator_stats,
+                      master_with_failing_image_writer)
 
 pytestmark = pytest.mark.usefixtures("coordinator_build")
 
@@ -79,12 +80,12 @@ class Terminal:
             i += 1
 
 
-def run_on_terminal(coordinator, args, columns, env=None, timeout=120):
+def run_on_terminal(coordinator, args, columns, env=None, timeout=120, **argv_options):
     """Run fc-master with stderr on a pseudo-terminal of `columns` x 24; returns (exit status,
-    everything it wrote there)."""
+    everything it wrote there). argv_options go to coordinator.argv (master=, another copy)."""
     master, slave = pty.openpty()
     fcntl.ioctl(slave, termios.TIOCSWINSZ, struct.pack("HHHH", 24, columns, 0, 0))
-    p = subprocess.Popen(coordinator.argv(args), cwd=COORDINATOR_SCENES, env=coordinator.env(env), stdin=subprocess.DEVNULL,
+    p = subprocess.Popen(coordinator.argv(args, **argv_options), cwd=COORDINATOR_SCENES, env=coordinator.env(env), stdin=subprocess.DEVNULL,
                          stdout=subprocess.DEVNULL, stderr=slave)
     coordinator.procs.append(p)
     os.close(slave)
@@ -125,6 +126,23 @@ def test_live_display_fits_the_terminal(coordinator, tmp_path, columns):
     # ... and it never claimed completion before the end; the summary did.
     assert "100%" not in text
     assert any("16 frame(s) rendered" in line for line in term.screen), term.screen
+
+
+def test_warning_during_the_run_starts_its_own_line(coordinator, tmp_path):
+    # fc-image-writer fails at the first assembled frame, while the progress line is shown:
+    # the warning clears that line first instead of being written onto its end.
+    rc, text = run_on_terminal(coordinator, ["--no-fc", "--division", "frame", "--tile", "80",
+                                             "--slaves", "2", SCENE] + SLOW +
+                               ["-o", str(tmp_path / "out")], 80,
+                               master=master_with_failing_image_writer(tmp_path))
+    assert rc == 0, text
+    before = text[:text.index("encoding Targa frames with OpenImageIO")]
+    assert "ETA" in before, "no progress line before the warning: the test shows nothing\n" + text
+    # Where the warning begins the terminal's cursor is at the start of an empty line.
+    start = before.rindex("fc-master: warning: ")
+    term = Terminal(80)
+    term.feed(text[:start].replace("\r\n", "\n"))
+    assert term.col == 0 and term.line() == "", (term.line(), text[start - 200:start + 200])
 
 
 def test_progress_counts_only_this_run(coordinator, tmp_path):
