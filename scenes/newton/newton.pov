@@ -64,7 +64,7 @@ global_settings { assumed_gamma 1.0 max_trace_level 5 }
 #declare AgmC[0] = AgmK;
 #declare AgmB  = cos(Theta0 / 2);
 #declare AgmN  = 0;
-#while (AgmC[AgmN] > 1e-16 & AgmN < 15)
+#while (abs(AgmC[AgmN]) > 1e-16 & AgmN < 15)
   #declare AgmA[AgmN + 1] = (AgmA[AgmN] + AgmB) / 2;
   #declare AgmC[AgmN + 1] = (AgmA[AgmN] - AgmB) / 2;
   #declare AgmB = sqrt(AgmA[AgmN] * AgmB);
