@@ -432,8 +432,8 @@ def test_assembled_targa_is_povrays_own_file(coordinator, coordinator_references
 def test_failing_image_writer_falls_back_to_openimageio(coordinator, coordinator_references,
                                                         tmp_path):
     out = tmp_path / "out"
-    argv = [str(master_with_failing_image_writer(tmp_path)), "--quiet", "--division", "frame", "--tile", "48",
-            "--slaves", "2", "--povray", coordinator_renderer(), SCENE] + SMALL + ["-o", str(out)]
+    argv = [str(master_with_failing_image_writer(tmp_path)), "--quiet", "--division", "frame",
+            "--tile", "48", "--slaves", "2", "--povray", coordinator_renderer(), SCENE] + SMALL + ["-o", str(out)]
     r = subprocess.run(argv, cwd=COORDINATOR_SCENES, env=coordinator.env(), capture_output=True,
                        text=True, timeout=90)
     assert r.returncode == 0, r.stderr

@@ -71,7 +71,9 @@ char *SDLCALL SDL_GetError(void)
     return sdl.SDL_GetError ? sdl.SDL_GetError() : load_error;
 }
 
-/* The rest run only on a display whose SDL_Init succeeded, so the library is loaded. */
+/* The rest run only on a display whose SDL_Init succeeded, so the library is loaded; each
+ * still passes through pthread_once, which is what makes the pointers set by SDL_Init's
+ * thread visible to another (the console's main thread and vfe's worker both draw). */
 SDL_Surface *SDLCALL SDL_CreateRGBSurface(Uint32 flags, int width, int height, int depth,
                                           Uint32 rmask, Uint32 gmask, Uint32 bmask, Uint32 amask)
 {
