@@ -66,19 +66,6 @@ bool parse_record_header(const std::string &line, FrameRecord &rec, size_t &payl
             rec.encoding = value;
             continue;
         }
-        if (key == "costs") {
-            std::istringstream list(value);
-            std::string item;
-            while (std::getline(list, item, ',')) {
-                double c = 0;
-                if (!parse_number(item, c) || c < 0) {
-                    err = "frame record cost is not a number of seconds: " + item;
-                    return false;
-                }
-                rec.costs.push_back(c);
-            }
-            continue;
-        }
         if (!parse_number(value, v)) {
             err = "frame record field " + key + " is not a number: " + value;
             return false;
@@ -94,8 +81,6 @@ bool parse_record_header(const std::string &line, FrameRecord &rec, size_t &payl
             rec.trace_seconds = v;
         } else if (key == "file_gamma") {
             rec.file_gamma = v;
-        } else if (key == "cpu") {
-            rec.cpu_seconds = v;
         } else if (key == "bytes") {
             if (v < 0 || v > double(kMaxPayload)) {
                 err = "frame record size out of range: " + value;
@@ -123,11 +108,6 @@ bool parse_record_header(const std::string &line, FrameRecord &rec, size_t &payl
             have_rects = n > 0;
         }
         // Unknown keys are ignored: a newer renderer may say more.
-    }
-    if (!rec.costs.empty() && rec.costs.size() != rec.rects.size()) {
-        err = strf("frame record of frame %d has %zu costs for %zu rectangles", rec.frame,
-                   rec.costs.size(), rec.rects.size());
-        return false;
     }
     size_t per_pixel = bytes_per_pixel(rec.encoding);
     if (!have_frame || !have_bytes || !have_rects || per_pixel == 0) {

@@ -12,9 +12,7 @@
 // Patch 0034: a record of the whole image in Targa or PNG says file=F and carries, after the
 // pixels, the F bytes of the file the format's writer makes of the frame (as one POV-Ray
 // process would write it). Patch 0039: file_gamma=G, the gamma the format's writer records in
-// the file (Targa's extension area), for the frames fc-master assembles. Patch 0040: cpu=S, the
-// renderer's processor seconds from the frame's parse to its record, and costs=C1,C2,...,
-// the processor seconds its render threads spent on each rectangle (fc-master balances by them).
+// the file (Targa's extension area), for the frames fc-master assembles.
 #pragma once
 
 #include <cstdint>
@@ -34,8 +32,6 @@ struct FrameRecord {
     std::vector<uint8_t> data;      // the pixels, as sent
     std::vector<uint8_t> file;      // the frame's image file (whole-image records), or empty
     double file_gamma = 0;          // the gamma its file records (patch 0039; 0: not said)
-    double cpu_seconds = -1;        // processor time of the frame (patch 0040; -1: not said)
-    std::vector<double> costs;      // processor seconds per rectangle (patch 0040; empty: not said)
 };
 
 // Incremental reader: feed it the bytes read from the channel, take complete records out.

@@ -55,13 +55,6 @@ struct Packer {
             status = pvm_pkint(const_cast<int *>(v.data()), int(v.size()), 1);
         return *this;
     }
-    Packer &doubles(const std::vector<double> &v)
-    {
-        i(int(v.size()));
-        if (status >= 0 && !v.empty())
-            status = pvm_pkdouble(const_cast<double *>(v.data()), int(v.size()), 1);
-        return *this;
-    }
     Packer &rects(const std::vector<Rect> &v)
     {
         i(int(v.size()));
@@ -121,19 +114,6 @@ struct Unpacker {
             v.resize(size_t(n));
             if (n > 0)
                 ok = pvm_upkint(v.data(), n, 1) >= 0;
-        }
-        return *this;
-    }
-    Unpacker &doubles(std::vector<double> &v)
-    {
-        int n = 0;
-        i(n);
-        if (ok && (n < 0 || n > (1 << 24)))
-            ok = false;
-        if (ok) {
-            v.resize(size_t(n));
-            if (n > 0)
-                ok = pvm_upkdouble(v.data(), n, 1) >= 0;
         }
         return *this;
     }
@@ -203,16 +183,15 @@ int pack(const FrameResult &m)
     return Packer()
         .i(m.job).i(m.frame).ints(m.tiles).rects(m.rects).d(m.rays).d(m.parse_seconds)
         .d(m.trace_seconds).i(m.fresh).s(m.encoding).bytes(m.data).bytes(m.file)
-        .d(m.file_gamma).d(m.cpu_seconds).doubles(m.costs).status;
+        .d(m.file_gamma).status;
 }
 bool unpack(FrameResult &m)
 {
     bool ok = Unpacker()
         .i(m.job).i(m.frame).ints(m.tiles).rects(m.rects).d(m.rays).d(m.parse_seconds)
         .d(m.trace_seconds).i(m.fresh).s(m.encoding).bytes(m.data).bytes(m.file)
-        .d(m.file_gamma).d(m.cpu_seconds).doubles(m.costs).ok;
-    return ok && !m.rects.empty() && m.tiles.size() == m.rects.size() &&
-           (m.costs.empty() || m.costs.size() == m.rects.size());
+        .d(m.file_gamma).ok;
+    return ok && !m.rects.empty() && m.tiles.size() == m.rects.size();
 }
 
 int pack(const Progress &m) { return Packer().i(m.job).i(m.frame).status; }

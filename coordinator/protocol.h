@@ -86,8 +86,6 @@ struct FrameResult {
     std::vector<uint8_t> data;          // the rectangles in order, rows top first
     std::vector<uint8_t> file;          // a whole frame's image file as POV-Ray wrote it, or empty
     double file_gamma = 0;              // the gamma POV-Ray's file records (0: not said)
-    double cpu_seconds = -1;            // the renderer's processor time for the frame (-1: not said)
-    std::vector<double> costs;          // processor seconds per rectangle (empty: not said)
 };
 
 struct Progress {

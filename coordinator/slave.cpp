@@ -226,8 +226,6 @@ bool Slave::send_frame(const FrameRecord &rec)
     fr.data = rec.data;
     fr.file = rec.file;
     fr.file_gamma = rec.file_gamma;
-    fr.cpu_seconds = rec.cpu_seconds;
-    fr.costs = rec.costs;
     int r = send_msg(master_, FC_FRAME, fr);
     if (r < 0) {
         g_stop = 1;     // the master is unreachable

@@ -147,28 +147,6 @@ def test_fewer_rays_for_fewer_rectangles(tmp_path):
     assert 0 < int(corner["rays"]) < int(whole["rays"]) / 4
 
 
-@pytest.mark.parametrize("fc", ["on", "off"])
-def test_records_say_what_each_rectangle_cost(tmp_path, fc):
-    # Patch 0040: cpu= (the process's processor time for the frame) and costs= (the render
-    # threads' processor seconds per rectangle), fc-master's measure of a tile's work. The
-    # left half meets 12 render blocks, the small rectangle one.
-    left, small = "0,0,80,120", "150,110,158,118"
-    control = "".join(f"render {n} {left} {small}\n" for n in range(1, 5))
-    r = channel_render(tmp_path, ["-A", f"Frame_Coherence={fc}"], control)
-    assert r.returncode == 0, r.stderr
-    recs = records(tmp_path / "channel")
-    assert len(recs) == 4
-    for fields, rects, _ in recs:
-        costs = [float(c) for c in fields["costs"].split(",")]
-        assert len(costs) == len(rects) == 2
-        # Even a block fc reuses whole costs its test.
-        assert all(c > 0 for c in costs), fields
-        # The blocks are part of the frame's processor time, not all of it (parse, messages).
-        assert sum(costs) < float(fields["cpu"]), fields
-        if fc == "off":
-            assert costs[0] > 3 * costs[1], fields
-
-
 def test_stop_and_end_of_file_end_the_render(tmp_path):
     r = channel_render(tmp_path, ["-A"], "render 2\nstop\nrender 3\n")
     assert r.returncode == 0, r.stderr

@@ -38,20 +38,6 @@ bool SampleIsDirty(const StoredSample &s, const BlockRecord &record, const Chang
 }  // namespace
 
 bool BlockTracer::Begin(std::uint32_t serial, int left, int top, int right, int bottom) {
-    if (plan_->costs) cost_ = BlockCost{left, top, right, bottom, ThreadCpuSeconds()};
-    const bool stored = BeginBlock(serial, left, top, right, bottom);
-    if (stored) NoteCost();
-    return stored;
-}
-
-void BlockTracer::NoteCost() const {
-    if (!plan_->costs) return;
-    BlockCost cost = cost_;
-    cost.seconds = ThreadCpuSeconds() - cost_.seconds;
-    plan_->costs->Add(cost);
-}
-
-bool BlockTracer::BeginBlock(std::uint32_t serial, int left, int top, int right, int bottom) {
     const FramePlan &plan = *plan_;
     endedActive_ = false;
     active_ = plan.mode != FramePlan::Mode::kIdle;
@@ -233,10 +219,7 @@ void BlockTracer::SetPixel(int x, int y, const float rgbft[5]) {
 }
 
 void BlockTracer::End() {
-    if (!active_) {
-        NoteCost();
-        return;
-    }
+    if (!active_) return;
     const FramePlan &plan = *plan_;
     // A pixel counts as traced when one of its own samples was, or when its colour
     // changed: with anti-aliasing a pixel can change through a neighbour's sample alone
@@ -308,7 +291,6 @@ void BlockTracer::End() {
     plan.store->Put(serial_, std::move(record));
     active_ = false;
     endedActive_ = true;
-    NoteCost();
 }
 
 void BlockTracer::GatherSegments(BlockRecord &record) {

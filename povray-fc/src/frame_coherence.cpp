@@ -77,8 +77,6 @@ void FrameCoherence::BeginFrame(bool enabled, const FrameSetup &setup, const voi
     changes_ = ChangeIndex();
     plan_ = FramePlan();
     plan_.counters = &counters_;
-    costs_.Clear();
-    plan_.costs = &costs_;
     plan_.tracedMask = maskDir_.empty() ? nullptr : &tracedMask_;
 
     SceneSignature signature;
@@ -230,7 +228,6 @@ void FrameCoherence::EndFrame(std::uint64_t raysTraced) {
             std::fprintf(stderr, "Frame_Coherence_Mask: cannot write %s\n", error.c_str());
     }
     last_ = current_;
-    lastCosts_.Assign(costs_.Snapshot());
 }
 
 }  // namespace povrayfc

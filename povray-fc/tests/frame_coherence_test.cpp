@@ -3,7 +3,6 @@
 // coherence must equal the same frame rendered from scratch, bit for bit.
 #include <cmath>
 #include <cstring>
-#include <set>
 #include <vector>
 
 #include <gtest/gtest.h>
@@ -222,35 +221,6 @@ ToyScene Frame(double moverX) {
     s.boxes.push_back({2, Box{Vec3{moverX, 2, 0}, Vec3{moverX + 2.5, 3.5, 1}}});  // a moving box
     s.boxes.push_back({3, Box{Vec3{11, 6, 2}, Vec3{13, 6.5, 3}}});        // still, casts a shadow
     return s;
-}
-
-TEST_F(FrameCoherenceRun, EveryBlockOfAFrameHasItsProcessorTimeReusedTracedOrIdle) {
-    // Frame 1 traces every block, frame 2 reuses most: either way each block of the frame
-    // reports what it cost its thread, once, with its own rectangle.
-    for (int f = 0; f < 2; ++f) {
-        RenderFc(Frame(1.0 + 0.75 * f), f + 1);
-        const std::vector<BlockCost> costs = FrameCoherence::Get().LastBlockCosts();
-        ASSERT_EQ(costs.size(), std::size_t(kW / kBlock) * std::size_t(kH / kBlock)) << "frame " << f + 1;
-        std::set<std::pair<int, int>> corners;
-        for (const BlockCost &c : costs) {
-            EXPECT_EQ(c.right - c.left + 1, kBlock);
-            EXPECT_EQ(c.bottom - c.top + 1, kBlock);
-            EXPECT_GE(c.seconds, 0.0);
-            corners.insert({c.left, c.top});
-        }
-        EXPECT_EQ(corners.size(), costs.size());
-    }
-    // With fc off a block is Begin and End only (the patched StoreBlock ends it): its time
-    // still counts.
-    FrameCoherence &fc = FrameCoherence::Get();
-    fc.BeginFrame(false, ToySetup(3), nullptr, {});
-    BlockTracer tracer(fc.Plan());
-    EXPECT_FALSE(tracer.Begin(0, 0, 0, kBlock - 1, kBlock - 1));
-    EXPECT_FALSE(tracer.Active());
-    tracer.End();
-    fc.EndFrame(0);
-    ASSERT_EQ(fc.LastBlockCosts().size(), 1u);
-    EXPECT_EQ(fc.LastBlockCosts()[0].right, kBlock - 1);
 }
 
 TEST_F(FrameCoherenceRun, EveryFrameEqualsTheFullRenderAndTracesLess) {

@@ -46,8 +46,7 @@ class BlockTracer {
     void BeginSample();
     void EndSample(double x, double y, const float rgbft[5]);
 
-    // The block's final pixel colours, then End() stores the block. With fc idle (Begin
-    // returned false and Active() is false) End() only notes the block's processor time.
+    // The block's final pixel colours, then End() stores the block.
     void SetPixel(int x, int y, const float rgbft[5]);
     void End();
     // After End(): the part of the block the front end must be sent, when it keeps its
@@ -70,10 +69,6 @@ class BlockTracer {
     bool Active() const { return active_; }
 
   private:
-    bool BeginBlock(std::uint32_t serial, int left, int top, int right, int bottom);
-    // The block's processor time into the plan's costs (Begin to End, or to a stored
-    // block's Begin).
-    void NoteCost() const;
     bool FindOld(double x, double y, std::uint32_t &index);
     void IndexOldSamples();
     void MarkTraced(double x, double y);
@@ -83,7 +78,6 @@ class BlockTracer {
     void GatherSegments(BlockRecord &record);
 
     const FramePlan *plan_;
-    BlockCost cost_;                        // the current block, from its start
     bool active_ = false;   // this block is under fc (mode != kIdle)
     bool endedActive_ = false;  // End() ended a block under fc (SendOnlyChanged)
     bool record_ = false;   // mode kRecord: samples and segments are kept

@@ -50,10 +50,6 @@ class FrameCoherence {
     // folder set, <folder>/retraced<frame>.png (frame zero-padded to 4 digits).
     void EndFrame(std::uint64_t raysTraced);
 
-    // The processor time of each block of the last finished frame (fc on or off), for a
-    // front end that says what each part of the frame cost (the frame channel).
-    std::vector<BlockCost> LastBlockCosts() const { return lastCosts_.Snapshot(); }
-
     // The statistics of the last finished frame (for tests and tools).
     const FrameStats &LastStats() const { return last_; }
 
@@ -75,7 +71,6 @@ class FrameCoherence {
     std::unique_ptr<SampleStore> store_;
     ChangeIndex changes_;
     FrameCounters counters_;
-    BlockCosts costs_, lastCosts_;
     DirtyMask tracedMask_;
     FramePlan plan_;
     RecordingPolicy policy_;

@@ -6,7 +6,6 @@
 #include <atomic>
 #include <cstdint>
 
-#include "povrayfc/block_costs.h"
 #include "povrayfc/change_index.h"
 #include "povrayfc/dirty_mask.h"
 #include "povrayfc/sample_store.h"
@@ -37,7 +36,6 @@ struct FramePlan {
     SampleStore *store = nullptr;
     FrameCounters *counters = nullptr;
     DirtyMask *tracedMask = nullptr;   // pixels traced this frame, when a mask is wanted
-    BlockCosts *costs = nullptr;       // each block's processor time, with fc on or off
     // A block reused whole still holds the same pixels in the front end's image: it is
     // reported done without sending them (no pixel message, no re-encoding).
     bool skipStoredBlocks = false;
