@@ -36,6 +36,7 @@ private:
     // Set-up steps, in order.
     bool resolve_programs();
     bool probe();
+    bool choose_format_by_name(ResolvedOptions &ini, double limit, std::string &err);
     bool prepare_output();
     Manifest manifest() const;
     bool resume_frames(bool fresh, bool adopt, std::vector<bool> &replace);

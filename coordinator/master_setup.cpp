@@ -10,6 +10,7 @@
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <cstring>
 #include <thread>
 
 #include "image_io.h"
@@ -91,6 +92,30 @@ bool Master::resolve_programs()
     return true;
 }
 
+// The output is named like a PNG or OpenEXR file (+Oclk.png): unless the user named a format,
+// frames are written in that one, as POV-Ray names PNG frames clk1.png, not clk.png1.tga. The
+// resolved options are asked again with PNG put before the user's options: where the answer
+// differs from the one with Targa before them, the user named no format. (Asked only here:
+// every other output name gives Targa either way, and a start of povray-fc is time on the
+// master's host.)
+bool Master::choose_format_by_name(ResolvedOptions &ini, double limit, std::string &err)
+{
+    if (mkdir((tmpdir_ + "/png").c_str(), 0700) != 0) {
+        err = "mkdir " + tmpdir_ + "/png: " + strerror(errno);
+        return false;
+    }
+    ResolvedOptions png;
+    if (!probe_resolved_options(renderer_, "+FN", opt_.pov, cwd_, tmpdir_ + "/png", limit, png, err))
+        return false;
+    if (ini["Output_File_Type"] == png["Output_File_Type"])
+        return true;
+    std::string option = format_from_name(ini);
+    ini["Output_File_Type"] = option.substr(2);
+    format_options_ = {option};
+    scene_ = SceneInfo();
+    return probe_scene(renderer_, option, opt_.pov, cwd_, tmpdir_, limit, scene_, err);
+}
+
 bool Master::probe()
 {
     std::string err;
@@ -100,23 +125,13 @@ bool Master::probe()
         return false;
     }
     // Both questions to POV-Ray at once: each start of povray-fc costs a tenth of a second.
-    // The resolved options are asked twice, with Targa and with PNG put before the user's
-    // options: where the two answers differ, the user named no format.
     double limit = std::max(30.0, opt_.timeout);
-    std::string scene_err, ini_err, png_err;
-    bool ini_ok = false, png_ok = false;
-    ResolvedOptions ini, png;
-    if (mkdir((tmpdir_ + "/png").c_str(), 0700) != 0) {
-        perror(("fc-master: mkdir " + tmpdir_ + "/png").c_str());
-        return false;
-    }
+    std::string scene_err, ini_err;
+    bool ini_ok = false;
+    ResolvedOptions ini;
     std::thread resolved([&] {
         ini_ok = probe_resolved_options(renderer_, "+FT", opt_.pov, cwd_, tmpdir_, limit, ini,
                                         ini_err);
-    });
-    std::thread resolved_png([&] {
-        png_ok = probe_resolved_options(renderer_, "+FN", opt_.pov, cwd_, tmpdir_ + "/png",
-                                        limit, png, png_err);
     });
     // OpenImageIO (262 shared libraries, 0.4 s of CPU; on the master's host out of its
     // slave's time) is needed only for what neither POV-Ray's file of a whole frame (patch
@@ -125,27 +140,15 @@ bool Master::probe()
     // division needs it for every frame: then it loads while POV-Ray is probed and the slaves
     // start, when the processors are mostly idle; not during the first frames, where it would
     // hold one slave back for the whole run (fc keeps tiles where they are). Not before the
-    // threads above: while dlopen() runs, glibc's loader lock stalls every pthread_create.
+    // thread above: while dlopen() runs, glibc's loader lock stalls every pthread_create.
     bool targa_by_writer = encoded_by_image_writer("targa", PixelType::U8);
     if (opt_.division != Division::Sequence && !targa_by_writer)
         preload_image_io();
     bool scene_ok = probe_scene(renderer_, "+FT", opt_.pov, cwd_, tmpdir_, limit, scene_, scene_err);
     resolved.join();
-    resolved_png.join();
-    err = !scene_ok ? scene_err : !ini_ok ? ini_err : png_err;
-    ini_ok = ini_ok && png_ok;
-    if (scene_ok && ini_ok && ini["Output_File_Type"] != png["Output_File_Type"]) {
-        // No format named: Targa, fc-master's default (the paper's), unless the output name
-        // ends as a PNG or OpenEXR file does; then that format, so that +Oclk.png gives
-        // clk1.png as POV-Ray names PNG frames, not clk.png1.tga.
-        std::string option = format_from_name(ini);
-        if (option != "+FT") {
-            ini["Output_File_Type"] = option.substr(2);
-            format_options_ = {option};
-            scene_ = SceneInfo();
-            scene_ok = probe_scene(renderer_, option, opt_.pov, cwd_, tmpdir_, limit, scene_, err);
-        }
-    }
+    err = !scene_ok ? scene_err : ini_err;
+    if (scene_ok && ini_ok && format_from_name(ini) != "+FT" && !choose_format_by_name(ini, limit, err))
+        ini_ok = false;
     if (scene_ok && ini_ok &&
         (!output_format(ini, format_, err) || !split_output_name(scene_, format_.ext, err) ||
          !set_frames(scene_, ini, err)))
