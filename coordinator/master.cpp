@@ -372,15 +372,17 @@ void Master::on_frame(int src)
     dispatch();
 }
 
-// Write the complete frames, unless OpenImageIO still loads and wait is false: then up to
-// kFramesWhileLoading stay in memory until it is ready (the receive loop calls this after
-// every message and tick, and the end of the run waits), so that no slave waits for its next
-// job meanwhile. After a failed write or a shell-out that asked to stop, nothing more is
+// Write the complete frames, unless they are encoded by OpenImageIO, it still loads and wait
+// is false: then up to kFramesWhileLoading stay in memory until it is ready (the receive loop
+// calls this after every message and tick, and the end of the run waits), so that no slave
+// waits for its next job meanwhile. Frames fc-image-writer encodes do not wait for a load the
+// preview started. After a failed write or a shell-out that asked to stop, nothing more is
 // written, as one POV-Ray process would.
 void Master::write_complete_frames(bool wait)
 {
     if (unwritten_.empty() ||
-        (!wait && unwritten_.size() <= kFramesWhileLoading && image_io_loading()))
+        (!wait && unwritten_.size() <= kFramesWhileLoading && image_io_loading() &&
+         !encoded_by_image_writer(format_.oiio, format_.pixels)))
         return;
     // Frames kept during the load completed in any order (whole frames on several slaves):
     // they go out in frame order.
