@@ -105,7 +105,8 @@ bool Master::choose_format_by_name(ResolvedOptions &ini, double limit, std::stri
         return false;
     }
     ResolvedOptions png;
-    if (!probe_resolved_options(renderer_, "+FN", opt_.pov, cwd_, tmpdir_ + "/png", limit, png, err))
+    if (!probe_resolved_options(renderer_, "+FN", opt_.pov, cwd_, tmpdir_ + "/png", limit, png,
+                                err))
         return false;
     if (ini["Output_File_Type"] == png["Output_File_Type"])
         return true;
@@ -147,7 +148,8 @@ bool Master::probe()
     bool scene_ok = probe_scene(renderer_, "+FT", opt_.pov, cwd_, tmpdir_, limit, scene_, scene_err);
     resolved.join();
     err = !scene_ok ? scene_err : ini_err;
-    if (scene_ok && ini_ok && format_from_name(ini) != "+FT" && !choose_format_by_name(ini, limit, err))
+    if (scene_ok && ini_ok && format_from_name(ini) != "+FT" &&
+        !choose_format_by_name(ini, limit, err))
         ini_ok = false;
     if (scene_ok && ini_ok &&
         (!output_format(ini, format_, err) || !split_output_name(scene_, format_.ext, err) ||
