@@ -15,8 +15,8 @@ import time
 import numpy as np
 import pytest
 
-from conftest import (COORDINATOR_SCENES, FC_MASTER, coordinator_renderer, coordinator_stats,
-                      frame_files, load_rgb, master_with_failing_image_writer)
+from conftest import (COORDINATOR_SCENES, coordinator_renderer, coordinator_stats, frame_files,
+                      load_rgb, master_with_failing_image_writer)
 
 pytestmark = pytest.mark.usefixtures("coordinator_build")
 
@@ -433,7 +433,8 @@ def test_failing_image_writer_falls_back_to_openimageio(coordinator, coordinator
                                                         tmp_path):
     out = tmp_path / "out"
     argv = [str(master_with_failing_image_writer(tmp_path)), "--quiet", "--division", "frame",
-            "--tile", "48", "--slaves", "2", "--povray", coordinator_renderer(), SCENE] + SMALL + ["-o", str(out)]
+            "--tile", "48", "--slaves", "2", "--povray", coordinator_renderer(), SCENE] + SMALL + \
+        ["-o", str(out)]
     r = subprocess.run(argv, cwd=COORDINATOR_SCENES, env=coordinator.env(), capture_output=True,
                        text=True, timeout=90)
     assert r.returncode == 0, r.stderr
