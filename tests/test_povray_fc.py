@@ -1,5 +1,8 @@
 """The povray-fc binary: it names itself, renders our scenes, and fails loudly on bad input."""
+import math
+import re
 import subprocess
+import time
 
 import numpy as np
 
@@ -89,3 +92,18 @@ def test_image_too_large_for_the_store_fails_at_once_with_the_reason(tmp_path):
     assert lines and "Frame_Coherence=off" in lines[0], done.stderr[-2000:]
     assert "Critical Error" not in done.stderr
     assert not (tmp_path / "t.tga").exists()
+
+
+def test_render_progress_is_rate_limited_and_ends_complete(tmp_path):
+    # Patch 0040: a progress message goes out at most every 100 ms, and always the one that
+    # completes the render area. A 320x240 frame has 80 render blocks; before the patch each
+    # sent one, and the console showed a status line for nearly every one of them.
+    start = time.monotonic()
+    done = render(POVRAY_FC, SCENES / "tiny" / "tiny.pov", tmp_path / "p.tga", "+W320", "+H240",
+                  "+Y", "+V", threads=2)
+    elapsed = time.monotonic() - start
+    assert done.returncode == 0, done.stderr
+    shown = re.findall(r"Rendered (\d+) of (\d+) pixels", done.stderr)
+    assert shown and shown[-1] == ("76800", "76800"), done.stderr[-2000:]
+    # The first block's, one per 100 ms of the run at most, and the last.
+    assert len(shown) <= 2 + math.ceil(elapsed / 0.1), (len(shown), elapsed)
