@@ -23,9 +23,9 @@ const int kControlFd = 4;           // its frame control
 
 // Options that make the renderer a pure frame source: no display, no pause, no shell-outs
 // (the master runs those once, as one POV-Ray process would), output only to the channel.
-// No render (options) or statistics streams on the console: about 80 lines a frame that only
-// the tail kept to explain a failure read, and that was 90% of what the renderer wrote
-// (warnings and errors, which explain failures, stay). The frame records carry the rays.
+// No render (options) or statistics streams on the console: about 80 lines a frame, 90% of
+// what the renderer wrote, read only into the tail that explains a failure (warnings and
+// errors, which do explain failures, stay). The frame records carry the rays.
 std::vector<std::string> slave_options(const RendererConfig &c, int first)
 {
     std::vector<std::string> o = {"-D", "-P", "-UA", "-GR", "-GS", "+O" + c.workdir + "/f",
