@@ -3,11 +3,19 @@
 
 #include <pthread.h>
 
+#include <condition_variable>
+#include <mutex>
 #include <system_error>
 #include <utility>
 #include <vector>
 
 namespace povrayfc {
+
+struct PooledThread::Done {
+    std::mutex mutex;
+    std::condition_variable returned;
+    bool done = false;
+};
 
 namespace {
 

@@ -11,12 +11,17 @@
 namespace povrayfc {
 namespace {
 
+// A function that sets `finished` after a while, long enough that returning early shows.
+std::function<void()> SlowFunction(std::atomic<bool> &finished) {
+    return [&finished] {
+        std::this_thread::sleep_for(std::chrono::milliseconds(40));
+        finished = true;
+    };
+}
+
 TEST(PooledThread, JoinWaitsForTheFunction) {
     std::atomic<bool> finished{false};
-    auto t = PooledThread::Start([&] {
-        std::this_thread::sleep_for(std::chrono::milliseconds(50));
-        finished = true;
-    }, 0);
+    auto t = PooledThread::Start(SlowFunction(finished), 0);
     t->Join();
     EXPECT_TRUE(finished);
     t->Join();  // again: returns at once
@@ -64,12 +69,7 @@ TEST(PooledThread, GivesAtLeastTheStackAskedFor) {
 
 TEST(PooledThread, DestroyingTheHandleWaitsForTheFunction) {
     std::atomic<bool> finished{false};
-    {
-        auto t = PooledThread::Start([&] {
-            std::this_thread::sleep_for(std::chrono::milliseconds(30));
-            finished = true;
-        }, 0);
-    }
+    { auto t = PooledThread::Start(SlowFunction(finished), 0); }
     EXPECT_TRUE(finished);
 }
 

@@ -16,11 +16,9 @@
 #ifndef POVRAYFC_THREAD_POOL_H
 #define POVRAYFC_THREAD_POOL_H
 
-#include <condition_variable>
 #include <cstddef>
 #include <functional>
 #include <memory>
-#include <mutex>
 
 namespace povrayfc {
 
@@ -40,11 +38,7 @@ class PooledThread {
     static std::size_t ThreadsCreated();
     static std::size_t ThreadsIdle();
 
-    struct Done {
-        std::mutex mutex;
-        std::condition_variable returned;
-        bool done = false;
-    };
+    struct Done;  // whether the function returned (thread_pool.cpp)
 
   private:
     explicit PooledThread(std::shared_ptr<Done> done) : done_(std::move(done)) {}
