@@ -28,6 +28,8 @@ void EncodeMemo::SetEnabled(bool enabled) {
         m.spans_.shrink_to_fit();
         m.spanKept_.clear();
         m.spanKept_.shrink_to_fit();
+        m.spanPixel_.clear();
+        m.spanPixel_.shrink_to_fit();
     }
 }
 
@@ -43,6 +45,7 @@ EncodeMemo *EncodeMemo::For(const void *image, unsigned width, unsigned height, 
         m.out_.assign(std::size_t(width) * height * 4, 0);
         m.kept_.assign(std::size_t(width) * height, 0);
         m.spans_.clear();
+        m.spanPixel_.clear();
         m.spanKept_.assign(std::size_t(m.SpansPerRow()) * height, 0);
     }
     return &m;
@@ -56,6 +59,7 @@ void EncodeMemo::Keep(unsigned x, unsigned y, const float in[4], const unsigned 
     for (int k = 0; k < 4; ++k) out_[i * 4 + k] = std::uint16_t(out[k]);
     // Its span's outputs may now be of other inputs than the span KeepSpan saw.
     spanKept_[std::size_t(y) * SpansPerRow() + x / kSpan] = 0;
+    if (!spanPixel_.empty()) spanPixel_[i] = 0;
 }
 
 bool EncodeMemo::SpanUnchanged(unsigned x0, unsigned y, const float *rgbft) const {
@@ -67,8 +71,13 @@ bool EncodeMemo::SpanUnchanged(unsigned x0, unsigned y, const float *rgbft) cons
 
 void EncodeMemo::KeepSpan(unsigned x0, unsigned y, const float *rgbft) {
     if (y >= height_ || x0 >= width_ || x0 % kSpan != 0) return;
-    if (spans_.empty()) spans_.assign(std::size_t(width_) * height_ * 5, 0.0f);
-    std::memcpy(&spans_[(std::size_t(y) * width_ + x0) * 5], rgbft, SpanLength(x0) * 5 * sizeof(float));
+    if (spans_.empty()) {
+        spans_.assign(std::size_t(width_) * height_ * 5, 0.0f);
+        spanPixel_.assign(std::size_t(width_) * height_, 0);
+    }
+    const std::size_t first = std::size_t(y) * width_ + x0;
+    std::memcpy(&spans_[first * 5], rgbft, SpanLength(x0) * 5 * sizeof(float));
+    std::memset(&spanPixel_[first], 1, SpanLength(x0));
     spanKept_[std::size_t(y) * SpansPerRow() + x0 / kSpan] = 1;
 }
 

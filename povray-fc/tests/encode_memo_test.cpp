@@ -76,6 +76,48 @@ TEST(EncodeMemo, ASpanIsUnchangedOnlyWithItsBitsAndNoPixelKeptSince) {
     EncodeMemo::SetEnabled(false);
 }
 
+TEST(EncodeMemo, APixelOfAChangedSpanIsUnchangedOnlyWithItsBitsAndNotKeptSince) {
+    EncodeMemo::SetEnabled(true);
+    int image = 0;
+    const unsigned width = 2 * EncodeMemo::kSpan;
+    EncodeMemo *m = EncodeMemo::For(&image, width, 2, 7);
+    ASSERT_NE(m, nullptr);
+    std::vector<float> row(std::size_t(width) * 5, 0.0f);
+    for (unsigned x = 0; x < width; ++x) row[x * 5] = 0.01f * float(x);
+    EXPECT_FALSE(m->PixelUnchanged(3, 1, &row[3 * 5]));  // no span kept yet
+    const unsigned out[4] = {186, 137, 0, 255};
+    for (unsigned x = 0; x < EncodeMemo::kSpan; ++x) {
+        const float in[4] = {row[x * 5], 0.0f, 0.0f, 1.0f};
+        m->Keep(x, 1, in, out);
+    }
+    m->KeepSpan(0, 1, &row[0]);
+    EXPECT_TRUE(m->PixelUnchanged(3, 1, &row[3 * 5]));
+    EXPECT_FALSE(m->PixelUnchanged(3, 0, &row[3 * 5]));                          // another row
+    EXPECT_FALSE(m->PixelUnchanged(EncodeMemo::kSpan + 3, 1, &row[3 * 5]));      // a span never kept
+    EXPECT_FALSE(m->PixelUnchanged(width, 1, &row[3 * 5]));                      // outside the image
+    // One pixel of the span changes: the span is changed, its other pixels are not.
+    std::vector<float> next = row;
+    next[5 * 5 + 1] = 0.5f;
+    EXPECT_FALSE(m->SpanUnchanged(0, 1, &next[0]));
+    EXPECT_FALSE(m->PixelUnchanged(5, 1, &next[5 * 5]));
+    EXPECT_TRUE(m->PixelUnchanged(4, 1, &next[4 * 5]));
+    // Invariant: any other bit is a change (here -0 for +0 in the filter).
+    next[6 * 5 + 3] = -0.0f;
+    EXPECT_FALSE(m->PixelUnchanged(6, 1, &next[6 * 5]));
+    // A pixel kept since holds the outputs of other inputs: not unchanged, even with the
+    // span's bits, until the span is kept again; its neighbours stay unchanged.
+    const float changed[4] = {0.5f, 0.5f, 0.0f, 1.0f};
+    m->Keep(5, 1, changed, out);
+    EXPECT_FALSE(m->PixelUnchanged(5, 1, &row[5 * 5]));
+    EXPECT_TRUE(m->PixelUnchanged(4, 1, &row[4 * 5]));
+    m->KeepSpan(0, 1, &next[0]);
+    EXPECT_TRUE(m->PixelUnchanged(5, 1, &next[5 * 5]));
+    EXPECT_FALSE(m->PixelUnchanged(5, 1, &row[5 * 5]));
+    // Other settings reset the pixels with the spans.
+    EXPECT_FALSE(EncodeMemo::For(&image, width, 2, 8)->PixelUnchanged(4, 1, &next[4 * 5]));
+    EncodeMemo::SetEnabled(false);
+}
+
 TEST(EncodeMemo, OffOrAnotherThreadMeansNoMemo) {
     int image = 0;
     EncodeMemo::SetEnabled(false);

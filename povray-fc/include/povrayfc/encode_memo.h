@@ -50,6 +50,17 @@ class EncodeMemo {
     bool SpanUnchanged(unsigned x0, unsigned y, const float *rgbft) const;
     // After every pixel of the span was found or kept for its current values.
     void KeepSpan(unsigned x0, unsigned y, const float *rgbft);
+    // Inside a span that changed, pixel by pixel: true when (x, y) was in a span KeepSpan
+    // saw, with the very bits at `rgbft` (its 5 floats), and was not kept (Keep) since: its
+    // Outputs() are then what encoding it gives. A moving object changes a few pixels of
+    // each span it crosses; the others need no encoding.
+    bool PixelUnchanged(unsigned x, unsigned y, const float *rgbft) const {
+        const std::size_t i = std::size_t(y) * width_ + x;
+        if (x >= width_ || y >= height_ || spanPixel_.empty() || !spanPixel_[i]) return false;
+        const std::uint32_t *p = reinterpret_cast<const std::uint32_t *>(&spans_[i * 5]);
+        const std::uint32_t *q = reinterpret_cast<const std::uint32_t *>(rgbft);
+        return ((p[0] ^ q[0]) | (p[1] ^ q[1]) | (p[2] ^ q[2]) | (p[3] ^ q[3]) | (p[4] ^ q[4])) == 0;
+    }
     // The outputs remembered for pixel (x, y): red, green, blue, alpha.
     const std::uint16_t *Outputs(unsigned x, unsigned y) const { return &out_[(std::size_t(y) * width_ + x) * 4]; }
 
@@ -74,6 +85,7 @@ class EncodeMemo {
 
     std::vector<float> spans_;           // 5 per pixel, the spans KeepSpan saw (allocated on first use)
     std::vector<std::uint8_t> spanKept_; // per span: spans_ and out_ hold it
+    std::vector<std::uint8_t> spanPixel_; // per pixel (with spans_): out_ encodes its spans_ bits
 };
 
 }  // namespace povrayfc
