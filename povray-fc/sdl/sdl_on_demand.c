@@ -5,10 +5,10 @@
  * (audio, X11, Wayland) from a constructor as soon as the process starts: about 6 ms of
  * CPU in every povray-fc process, most of a short process's start (`povray-fc --version`
  * took 10.0 ms of CPU with it, 4.1 ms without). Most renders never open a window (-D, a
- * render farm's slaves, fc-master's option probes), so this file is linked whole ahead of POV-Ray's -lSDL, the
- * linker (--as-needed) then leaves libSDL out of the binary, and the first SDL_Init loads
- * it. C, not C++: configure links its C test programs with the same flags. Built with SDL's
- * own header, so every signature is checked against the real one. */
+ * render farm's slaves, fc-master's option probes), so this file is linked whole ahead of
+ * POV-Ray's -lSDL, the linker (--as-needed) then leaves libSDL out of the binary, and the
+ * first SDL_Init loads it. C, not C++: configure links its C test programs with the same
+ * flags. Built with SDL's own header, so every signature is checked against the real one. */
 #include <SDL.h>
 
 #include <dlfcn.h>
