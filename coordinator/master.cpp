@@ -702,7 +702,7 @@ void Master::shutdown_slaves()
 int Master::loop()
 {
     start_ = now();
-    next_tick_ = start_ + kTick;
+    next_tick_ = start_;    // the first tick at once: the progress line shows from the start
     while (!sched_->finished() && !failed_ && !quit_early_) {
         if (g_signal) {
             report_.clear_line();

@@ -505,7 +505,18 @@ int Master::run()
         report_.clear_line();
         fprintf(stderr, "fc-master: warning: %s\n", message.c_str());
     });
-    if (!resolve_programs() || !probe() || !prepare_output()) {
+    if (!resolve_programs())
+        return 1;
+    // The slaves start while POV-Ray is probed: the probes are processes of this host (tens
+    // of milliseconds), the slaves start on every host and say hello in the meantime, so the
+    // first jobs go out as soon as the options are known. PVM is used from this thread only.
+    bool probed = false;
+    std::thread probing([&] { probed = probe(); });
+    bool started = start_cluster();
+    probing.join();
+    debug_log("probes done, slaves spawned");
+    if (!probed || !started || !prepare_output()) {
+        cluster_.stop();
         if (!tmpdir_.empty())
             remove_tree(tmpdir_);
         return 1;
@@ -513,6 +524,7 @@ int Master::run()
     remove_tree(tmpdir_);
     tmpdir_.clear();
     if (sched_->finished()) {
+        cluster_.stop();
         fprintf(stderr, "fc-master: all %zu frame(s) already exist in %s: nothing to render\n",
                 scene_.frames.size(), outdir_.c_str());
         finish(true);
@@ -521,15 +533,10 @@ int Master::run()
     ShelloutResult pre = shellouts_.run(Shellouts::PreScene, scene_.frames.front(),
                                         assembly_->final_path(0));
     if (pre.action != ShelloutResult::Continue) {
+        cluster_.stop();
         fprintf(stderr, "fc-master: %s\n", pre.message.c_str());
         return pre.action == ShelloutResult::Quit ? 0 : 1;
     }
-    debug_log("probes done");
-    if (!start_cluster()) {
-        cluster_.stop();
-        return 1;
-    }
-    debug_log("slaves spawned");
     int rc = loop();
     debug_log("loop done");
     double elapsed = start_ > 0 ? now() - start_ : 0;
