@@ -1,6 +1,6 @@
 // master_setup.cpp - fc-master before and after the receive loop: find the programs, probe
-// the scene, prepare the output (resume), start the virtual machine and the slaves, and write
-// the statistics at the end.
+// the scene while the virtual machine and the slaves start, prepare the output (resume), and
+// write the statistics at the end.
 #include <sys/resource.h>
 #include <sys/stat.h>
 #include <unistd.h>
@@ -515,8 +515,14 @@ int Master::run()
     bool started = start_cluster();
     probing.join();
     debug_log("probes done, slaves spawned");
-    if (!probed || !started || !prepare_output()) {
+    // Nothing rendered: the slaves are told to quit before the virtual machine goes (halting
+    // a private pvmd under slaves still starting left libpvm's "mxfer() mxinput bad return").
+    auto stop_cluster = [this] {
+        shutdown_slaves();
         cluster_.stop();
+    };
+    if (!probed || !started || !prepare_output()) {
+        stop_cluster();
         if (!tmpdir_.empty())
             remove_tree(tmpdir_);
         return 1;
@@ -524,7 +530,7 @@ int Master::run()
     remove_tree(tmpdir_);
     tmpdir_.clear();
     if (sched_->finished()) {
-        cluster_.stop();
+        stop_cluster();
         fprintf(stderr, "fc-master: all %zu frame(s) already exist in %s: nothing to render\n",
                 scene_.frames.size(), outdir_.c_str());
         finish(true);
@@ -533,7 +539,7 @@ int Master::run()
     ShelloutResult pre = shellouts_.run(Shellouts::PreScene, scene_.frames.front(),
                                         assembly_->final_path(0));
     if (pre.action != ShelloutResult::Continue) {
-        cluster_.stop();
+        stop_cluster();
         fprintf(stderr, "fc-master: %s\n", pre.message.c_str());
         return pre.action == ShelloutResult::Quit ? 0 : 1;
     }
