@@ -1,6 +1,6 @@
 // master_setup.cpp - fc-master before and after the receive loop: find the programs, probe
-// the scene while the virtual machine and the slaves start, prepare the output (resume), and
-// write the statistics at the end.
+// the scene, prepare the output (resume), start the virtual machine and the slaves, and write
+// the statistics at the end.
 #include <sys/resource.h>
 #include <sys/stat.h>
 #include <unistd.h>
@@ -505,24 +505,7 @@ int Master::run()
         report_.clear_line();
         fprintf(stderr, "fc-master: warning: %s\n", message.c_str());
     });
-    if (!resolve_programs())
-        return 1;
-    // The slaves start while POV-Ray is probed: the probes are processes of this host (tens
-    // of milliseconds), the slaves start on every host and say hello in the meantime, so the
-    // first jobs go out as soon as the options are known. PVM is used from this thread only.
-    bool probed = false;
-    std::thread probing([&] { probed = probe(); });
-    bool started = start_cluster();
-    probing.join();
-    debug_log("probes done, slaves spawned");
-    // Nothing rendered: the slaves are told to quit before the virtual machine goes (halting
-    // a private pvmd under slaves still starting left libpvm's "mxfer() mxinput bad return").
-    auto stop_cluster = [this] {
-        shutdown_slaves();
-        cluster_.stop();
-    };
-    if (!probed || !started || !prepare_output()) {
-        stop_cluster();
+    if (!resolve_programs() || !probe() || !prepare_output()) {
         if (!tmpdir_.empty())
             remove_tree(tmpdir_);
         return 1;
@@ -530,7 +513,6 @@ int Master::run()
     remove_tree(tmpdir_);
     tmpdir_.clear();
     if (sched_->finished()) {
-        stop_cluster();
         fprintf(stderr, "fc-master: all %zu frame(s) already exist in %s: nothing to render\n",
                 scene_.frames.size(), outdir_.c_str());
         finish(true);
@@ -539,10 +521,15 @@ int Master::run()
     ShelloutResult pre = shellouts_.run(Shellouts::PreScene, scene_.frames.front(),
                                         assembly_->final_path(0));
     if (pre.action != ShelloutResult::Continue) {
-        stop_cluster();
         fprintf(stderr, "fc-master: %s\n", pre.message.c_str());
         return pre.action == ShelloutResult::Quit ? 0 : 1;
     }
+    debug_log("probes done");
+    if (!start_cluster()) {
+        cluster_.stop();
+        return 1;
+    }
+    debug_log("slaves spawned");
     int rc = loop();
     debug_log("loop done");
     double elapsed = start_ > 0 ? now() - start_ : 0;
