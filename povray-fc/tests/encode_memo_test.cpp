@@ -118,6 +118,46 @@ TEST(EncodeMemo, APixelOfAChangedSpanIsUnchangedOnlyWithItsBitsAndNotKeptSince) 
     EncodeMemo::SetEnabled(false);
 }
 
+TEST(EncodeMemo, RefreshSpanEncodesOnlyThePixelsThatChanged) {
+    EncodeMemo::SetEnabled(true);
+    int image = 0;
+    const unsigned width = EncodeMemo::kSpan + 5;  // a full span and a short one
+    EncodeMemo *m = EncodeMemo::For(&image, width, 1, 3);
+    ASSERT_NE(m, nullptr);
+    std::vector<float> row(std::size_t(width) * 5, 0.0f);
+    for (unsigned x = 0; x < width; ++x) row[x * 5] = 0.01f * float(x);
+    // An encoder that keeps its result, as GetEncodedRGBAValue does with the memo.
+    std::vector<unsigned> encoded;
+    auto encode = [&](const std::vector<float> &values) {
+        return [&, values](unsigned x) {
+            encoded.push_back(x);
+            const float in[4] = {values[x * 5], 0.0f, 0.0f, 1.0f};
+            const unsigned out[4] = {unsigned(values[x * 5] * 1000.0f), 0, 0, 255};
+            m->Keep(x, 0, in, out);
+        };
+    };
+    m->RefreshSpan(0, 0, &row[0], encode(row));
+    m->RefreshSpan(EncodeMemo::kSpan, 0, &row[EncodeMemo::kSpan * 5], encode(row));
+    EXPECT_EQ(encoded.size(), std::size_t(width));  // nothing kept yet: every pixel
+    EXPECT_TRUE(m->SpanUnchanged(0, 0, &row[0]));
+    EXPECT_TRUE(m->SpanUnchanged(EncodeMemo::kSpan, 0, &row[EncodeMemo::kSpan * 5]));
+    // Again with the same bits: nothing is encoded.
+    encoded.clear();
+    m->RefreshSpan(0, 0, &row[0], encode(row));
+    EXPECT_TRUE(encoded.empty());
+    // Two pixels of the first span change: only they are encoded, and every output of the
+    // span is then the one of its current values.
+    std::vector<float> next = row;
+    next[3 * 5] = 0.5f;
+    next[7 * 5 + 4] = 0.25f;
+    m->RefreshSpan(0, 0, &next[0], encode(next));
+    EXPECT_EQ(encoded, (std::vector<unsigned>{3, 7}));
+    EXPECT_EQ(m->Outputs(3, 0)[0], 500u);
+    EXPECT_EQ(m->Outputs(4, 0)[0], unsigned(row[4 * 5] * 1000.0f));
+    EXPECT_TRUE(m->SpanUnchanged(0, 0, &next[0]));
+    EncodeMemo::SetEnabled(false);
+}
+
 TEST(EncodeMemo, OffOrAnotherThreadMeansNoMemo) {
     int image = 0;
     EncodeMemo::SetEnabled(false);

@@ -61,6 +61,18 @@ class EncodeMemo {
         const std::uint32_t *q = reinterpret_cast<const std::uint32_t *>(rgbft);
         return ((p[0] ^ q[0]) | (p[1] ^ q[1]) | (p[2] ^ q[2]) | (p[3] ^ q[3]) | (p[4] ^ q[4])) == 0;
     }
+    // Brings Outputs() up to date for the span of row y at x0 (a multiple of kSpan), whose
+    // floats are at `rgbft` (5 a pixel), the one way every writer does it: nothing when the
+    // span is unchanged; otherwise encodePixel(x) for each pixel that is not (it must encode
+    // through the memo, which keeps the result, as GetEncodedRGBAValue does), then KeepSpan.
+    template <typename EncodePixel>
+    void RefreshSpan(unsigned x0, unsigned y, const float *rgbft, EncodePixel encodePixel) {
+        if (x0 >= width_ || y >= height_ || SpanUnchanged(x0, y, rgbft)) return;
+        const std::size_t n = SpanLength(x0);
+        for (std::size_t k = 0; k < n; ++k)
+            if (!PixelUnchanged(x0 + unsigned(k), y, rgbft + k * 5)) encodePixel(x0 + unsigned(k));
+        KeepSpan(x0, y, rgbft);
+    }
     // The outputs remembered for pixel (x, y): red, green, blue, alpha.
     const std::uint16_t *Outputs(unsigned x, unsigned y) const { return &out_[(std::size_t(y) * width_ + x) * 4]; }
 
