@@ -15,6 +15,7 @@ import time
 import pytest
 
 from conftest import TOP, coordinator_stats, frame_files, load_rgb
+from fcutil import LONG_COORDINATOR_RENDER
 
 pytestmark = pytest.mark.usefixtures("coordinator_build")
 
@@ -203,14 +204,14 @@ def test_host_added_while_rendering(coordinator, coordinator_references, vm, tmp
     vm.add([first], 2)
     out, stats = tmp_path / "out", tmp_path / "stats.json"
     p = coordinator.start(["--no-fc", "--division", "frame", "--stats", str(stats), SCENE] +
-                          SLOW + ["-o", str(out)], env=vm.env)
+                          LONG_COORDINATOR_RENDER + ["-o", str(out)], env=vm.env)
     time.sleep(1.0)
     assert p.poll() is None
     vm.console(["add " + late])
     err = finish(coordinator, p)
     assert p.returncode == 0, err + coordinator.trace()
     assert "host %s joined" % late in err
-    assert_same(out, coordinator_references.frames(SCENE, SLOW))
+    assert_same(out, coordinator_references.frames(SCENE, LONG_COORDINATOR_RENDER))
     hosts = {h["name"]: h for h in coordinator_stats(stats)["hosts"]}
     # Invariant: a host added while rendering gets slaves and work.
     assert hosts[late]["jobs"] >= 1, hosts

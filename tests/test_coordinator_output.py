@@ -17,6 +17,7 @@ import pytest
 
 from conftest import (COORDINATOR_SCENES, coordinator_renderer, coordinator_stats, frame_files,
                       load_rgb, master_with_failing_image_writer)
+from fcutil import LONG_COORDINATOR_RENDER
 
 pytestmark = pytest.mark.usefixtures("coordinator_build")
 
@@ -24,9 +25,6 @@ SCENE = "moving.pov"
 SMALL = ["+W160", "+H120", "+KFI1", "+KFF8"]
 # 24 Targa frames of 225 KB; about 0.2 s a frame per process.
 SLOW = ["+W320", "+H240", "+KFI1", "+KFF24", "+A0.1", "+AM2", "+R3"]
-# SLOW with a deeper anti-aliasing recursion: about 11 s on one processor of today's machine,
-# well beyond the preview's first write (5 s in); SLOW's 5.7 s ended too close to it.
-SLOWER = SLOW[:-1] + ["+R4"]
 
 root_only = pytest.mark.skipif(os.geteuid() != 0, reason="needs root to mount tmpfs")
 
@@ -520,10 +518,10 @@ def test_unsupported_output_is_refused(coordinator, tmp_path, opt, words):
 @pytest.mark.parametrize("division", ["frame", "sequence"])
 def test_preview_while_rendering(coordinator, coordinator_references, tmp_path, division):
     out = tmp_path / "out"
-    ref = coordinator_references.frames(SCENE, SLOWER)
+    ref = coordinator_references.frames(SCENE, LONG_COORDINATOR_RENDER)
     # On one processor the render lasts well beyond the preview's first write (5 s in).
-    p = coordinator.start(["--no-fc", "--quiet", "--division", division, "--slaves", "2",
-                           SCENE] + SLOWER + ["-o", str(out)], prefix=["taskset", "-c", "0"])
+    p = coordinator.start(["--no-fc", "--quiet", "--division", division, "--slaves", "2", SCENE] +
+                          LONG_COORDINATOR_RENDER + ["-o", str(out)], prefix=["taskset", "-c", "0"])
     latest = out / "preview" / "latest.png"
     deadline = time.time() + 60
     while not latest.exists():
