@@ -91,31 +91,6 @@ bool MayMeet(const Segment &s, const Box &box) {
     return MeetsWidened(s, box, SegmentMargin(s, Centre(box), HalfExtent(box)));
 }
 
-bool MeetsWidened(const Segment &s, const Box &box, double m) {
-    // Separating-axis test of the segment against the widened box (the box's three axes
-    // and their cross products with the segment), all multiplications: a slab test's three
-    // divisions cost more than the rest of the test together, and this runs for every
-    // stored segment every frame.
-    const Vec3 o{s.origin[0], s.origin[1], s.origin[2]}, d{s.direction[0], s.direction[1], s.direction[2]};
-    const Vec3 c = 0.5 * (box.lo + box.hi);
-    const Vec3 e = 0.5 * (box.hi - box.lo) + Vec3{m, m, m};
-    const Vec3 oc = o - c;
-    // Beyond `far` along the ray every point is farther from c than any point of the box
-    // (|v|_2 <= |v|_1), which bounds an unbounded ray.
-    const double dmax = std::max(std::fabs(d.x), std::max(std::fabs(d.y), std::fabs(d.z)));
-    const double far = (std::fabs(oc.x) + std::fabs(oc.y) + std::fabs(oc.z) + e.x + e.y + e.z) / dmax;
-    const double half = 0.5 * std::min(double(s.length), far);
-    const Vec3 h = half * d;        // half of the segment
-    const Vec3 mc = oc + h;         // its midpoint, relative to the box centre
-    const double ahx = std::fabs(h.x), ahy = std::fabs(h.y), ahz = std::fabs(h.z);
-    if (std::fabs(mc.x) > e.x + ahx || std::fabs(mc.y) > e.y + ahy || std::fabs(mc.z) > e.z + ahz) return false;
-    // Rounding in the cross products is ~1e-16 of these magnitudes, far inside m.
-    if (std::fabs(mc.y * h.z - mc.z * h.y) > e.y * ahz + e.z * ahy) return false;
-    if (std::fabs(mc.z * h.x - mc.x * h.z) > e.x * ahz + e.z * ahx) return false;
-    if (std::fabs(mc.x * h.y - mc.y * h.x) > e.x * ahy + e.y * ahx) return false;
-    return true;
-}
-
 bool MayMeet(const Segment &s, const Hull &hull) {
     if (!MayMeet(s, hull.box)) return false;
     if (!hull.hasCapsule) return true;

@@ -27,7 +27,7 @@ struct RecordedBlock {
 
 // A block's worth of rays recorded as the hooks record them: camera rays from one eye
 // (some to infinity), a shadow test from each hit towards one of two lights (some stopped
-// by a blocker half way), and a few reflections.
+// by a blocker half way), and a few reflections, each with a shadow test from its hit.
 RecordedBlock BlockRays(std::mt19937_64 &rng) {
     std::uniform_real_distribution<double> u(-1, 1), len(2, 30);
     const Vec3 eye{0.3, 2, -20}, lights[2] = {Vec3{10, 15, -5}, Vec3{-7, 12, 3}};
@@ -54,8 +54,13 @@ RecordedBlock BlockRays(std::mt19937_64 &rng) {
         }
         if (i % 7 == 0) {
             const Vec3 r = Normalised(Vec3{u(rng), u(rng), u(rng)});
-            const double po[3] = {p.x, p.y, p.z}, rd[3] = {r.x, r.y, r.z};
-            RecordRaySegment(po, rd, len(rng));
+            const double po[3] = {p.x, p.y, p.z}, rd[3] = {r.x, r.y, r.z}, rt = len(rng);
+            RecordRaySegment(po, rd, rt);
+            const Vec3 q = p + rt * r, toOther = lights[(i + 1) % 2] - q;
+            const double qDist = Norm3(toOther);
+            const Vec3 ql = (1.0 / qDist) * toOther;
+            const double qo[3] = {q.x, q.y, q.z}, qd[3] = {ql.x, ql.y, ql.z};
+            ShadowSegmentRecord deepShadow(qo, qd, qDist);
         }
     }
     StopRecordingRays();
@@ -67,11 +72,23 @@ TEST(SegmentFans, BundlesTheCameraAndTheLights) {
     RecordedBlock b = BlockRays(rng);
     const std::size_t n = b.segments.size();
     const BlockFans fans = BuildFans(b.segments.data(), b.fanOf, b.apexes);
-    // Invariant: camera rays and shadow rays are bundled (camera, two lights); the random
+    // Invariant: camera rays and shadow rays are bundled (camera, two lights, and the two
+    // lights again for the shadow tests from where reflections hit); the random
     // reflections share no point, so they stay loose.
-    ASSERT_EQ(fans.fans.size(), 3u);
+    ASSERT_EQ(fans.fans.size(), 5u);
     EXPECT_EQ(fans.fans[0].originReach, 0.0);
     EXPECT_GT(fans.fans[1].originReach, 0.0);
+    int deep = 0;
+    for (int f = 0; f < b.apexes.count; ++f) deep += b.apexes.isDeep[f];
+    EXPECT_EQ(deep, 2);
+    // The shadow tests from the camera rays' hits lie in a narrower cone than those from
+    // the reflections' hits, which come from all around.
+    for (int f = 1; f < b.apexes.count; ++f)
+        for (int g = 1; g < b.apexes.count; ++g)
+            if (!b.apexes.isDeep[f] && b.apexes.isDeep[g] && Norm3(Vec3{b.apexes.point[f][0] - b.apexes.point[g][0],
+                    b.apexes.point[f][1] - b.apexes.point[g][1], b.apexes.point[f][2] - b.apexes.point[g][2]}) < 1e-6) {
+                EXPECT_LT(fans.fans[std::size_t(f)].halfAngle, fans.fans[std::size_t(g)].halfAngle);
+            }
     const std::size_t loose = std::size_t(std::count(b.fanOf.begin(), b.fanOf.end(), BlockFans::kLoose));
     EXPECT_GT(loose, 0u);
     EXPECT_LT(loose, n / 8);
@@ -129,8 +146,12 @@ TEST(SegmentFans, ConeNeverMissesACapsuleItsSegmentsMeet) {
                 const bool coneOfBox = FanMayMeet(fans.fans[f], boxed);
                 // Invariant: the capsule only narrows the box's test.
                 ASSERT_TRUE(coneOfBox || !cone) << block << " " << k << " " << f;
-                boxOnly += coneOfBox;
-                capsuleRejects += coneOfBox && !cone;
+                // (The shadow tests from the random reflections' hits come from all
+                // around: their cones reach every hull, box or capsule.)
+                if (!b.apexes.isDeep[f]) {
+                    boxOnly += coneOfBox;
+                    capsuleRejects += coneOfBox && !cone;
+                }
                 for (std::size_t i = 0; i < b.segments.size(); ++i) {
                     if (b.fanOf[i] != f || !MayMeet(b.segments[i], capsule)) continue;
                     ++checked;

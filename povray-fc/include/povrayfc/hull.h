@@ -54,8 +54,37 @@ inline bool BeyondOneFace(const Segment &s, const Box &box, double margin) {
 // True when the ray a segment stands for may pass through the closed box (a slab test
 // against the box widened by SegmentMargin). Never false for a ray that touches it.
 bool MayMeet(const Segment &s, const Box &box);
-// The slab test against `box` widened by `margin` (finite boxes only).
-bool MeetsWidened(const Segment &s, const Box &box, double margin);
+// The separating-axis test against `box` widened by `margin` (finite boxes only): false
+// only when the segment provably misses it; a NaN anywhere gives true.
+inline bool MeetsWidened(const Segment &s, const Box &box, double m) {
+    // The box's three axes and their cross products with the segment, all multiplications:
+    // a slab test's three divisions cost more than the rest of the test together, and
+    // this runs for every stored segment near a change every frame. Every length is
+    // scaled by k, the direction's largest component (> 0, see MakeSegment), which spares
+    // the one division left: the comparisons scale alike, and the rounding this moves is
+    // ~1e-16 of the magnitudes, far inside m.
+    const double ox = s.origin[0], oy = s.origin[1], oz = s.origin[2];
+    const double dx = s.direction[0], dy = s.direction[1], dz = s.direction[2];
+    const double cx = 0.5 * (box.lo.x + box.hi.x), cy = 0.5 * (box.lo.y + box.hi.y), cz = 0.5 * (box.lo.z + box.hi.z);
+    const double ex = 0.5 * (box.hi.x - box.lo.x) + m, ey = 0.5 * (box.hi.y - box.lo.y) + m,
+                 ez = 0.5 * (box.hi.z - box.lo.z) + m;
+    const double ocx = ox - cx, ocy = oy - cy, ocz = oz - cz;
+    const double k = std::max(std::fabs(dx), std::max(std::fabs(dy), std::fabs(dz)));
+    // Beyond `reach` / k along the ray every point is farther from c than any point of the
+    // box (|v|_2 <= |v|_1), which bounds an unbounded ray.
+    const double reach = std::fabs(ocx) + std::fabs(ocy) + std::fabs(ocz) + ex + ey + ez;
+    const double half = 0.5 * std::min(double(s.length) * k, reach);
+    const double hx = half * dx, hy = half * dy, hz = half * dz;  // k times half the segment
+    const double mx = k * ocx + hx, my = k * ocy + hy, mz = k * ocz + hz;  // k times its midpoint
+    const double kx = k * ex, ky = k * ey, kz = k * ez;
+    const double ahx = std::fabs(hx), ahy = std::fabs(hy), ahz = std::fabs(hz);
+    // Each comparison says "separated", so a NaN (false) never rejects.
+    if (std::fabs(mx) > kx + ahx || std::fabs(my) > ky + ahy || std::fabs(mz) > kz + ahz) return false;
+    if (std::fabs(my * hz - mz * hy) > ky * ahz + kz * ahy) return false;
+    if (std::fabs(mz * hx - mx * hz) > kx * ahz + kz * ahx) return false;
+    if (std::fabs(mx * hy - my * hx) > kx * ahy + ky * ahx) return false;
+    return true;
+}
 
 // True when the ray a segment stands for may pass through the hull (box, then capsule).
 bool MayMeet(const Segment &s, const Hull &hull);
