@@ -18,18 +18,12 @@ void EncodeMemo::SetEnabled(bool enabled) {
     m.owner_ = std::this_thread::get_id();
     if (!enabled) {
         m.image_ = nullptr;
-        m.in_.clear();
-        m.in_.shrink_to_fit();
-        m.out_.clear();
-        m.out_.shrink_to_fit();
-        m.kept_.clear();
-        m.kept_.shrink_to_fit();
-        m.spans_.clear();
-        m.spans_.shrink_to_fit();
-        m.spanKept_.clear();
-        m.spanKept_.shrink_to_fit();
-        m.spanPixel_.clear();
-        m.spanPixel_.shrink_to_fit();
+        m.in_.Release();
+        m.out_.Release();
+        m.kept_.Release();
+        m.spans_.Release();
+        m.spanKept_.Release();
+        m.spanPixel_.Release();
     }
 }
 
@@ -41,12 +35,12 @@ EncodeMemo *EncodeMemo::For(const void *image, unsigned width, unsigned height, 
         m.width_ = width;
         m.height_ = height;
         m.settings_ = settings;
-        m.in_.assign(std::size_t(width) * height * 4, 0.0f);
-        m.out_.assign(std::size_t(width) * height * 4, 0);
-        m.kept_.assign(std::size_t(width) * height, 0);
-        m.spans_.clear();
-        m.spanPixel_.clear();
-        m.spanKept_.assign(std::size_t(m.SpansPerRow()) * height, 0);
+        m.in_.Reset(std::size_t(width) * height * 4);
+        m.out_.Reset(std::size_t(width) * height * 4);
+        m.kept_.Reset(std::size_t(width) * height);
+        m.spans_.Release();
+        m.spanPixel_.Release();
+        m.spanKept_.Reset(std::size_t(m.SpansPerRow()) * height);
     }
     return &m;
 }
@@ -72,8 +66,8 @@ bool EncodeMemo::SpanUnchanged(unsigned x0, unsigned y, const float *rgbft) cons
 void EncodeMemo::KeepSpan(unsigned x0, unsigned y, const float *rgbft) {
     if (y >= height_ || x0 >= width_ || x0 % kSpan != 0) return;
     if (spans_.empty()) {
-        spans_.assign(std::size_t(width_) * height_ * 5, 0.0f);
-        spanPixel_.assign(std::size_t(width_) * height_, 0);
+        spans_.Reset(std::size_t(width_) * height_ * 5);
+        spanPixel_.Reset(std::size_t(width_) * height_);
     }
     const std::size_t first = std::size_t(y) * width_ + x0;
     std::memcpy(&spans_[first * 5], rgbft, SpanLength(x0) * 5 * sizeof(float));

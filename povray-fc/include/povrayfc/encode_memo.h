@@ -16,7 +16,8 @@
 #include <cstddef>
 #include <cstdint>
 #include <thread>
-#include <vector>
+
+#include "povrayfc/zeroed_array.h"
 
 namespace povrayfc {
 
@@ -89,15 +90,16 @@ class EncodeMemo {
     const void *image_ = nullptr;
     unsigned width_ = 0, height_ = 0;
     std::uint64_t settings_ = 0;
-    std::vector<float> in_;            // 4 per pixel
-    std::vector<std::uint8_t> kept_;   // per pixel: in_ and out_ hold a value
-    std::vector<std::uint16_t> out_;   // 4 per pixel (POV-Ray encodes to at most 16 bits)
+    // Per pixel of the whole image, but a renderer of a few tiles touches only their rows.
+    ZeroedArray<float> in_;            // 4 per pixel
+    ZeroedArray<std::uint8_t> kept_;   // per pixel: in_ and out_ hold a value
+    ZeroedArray<std::uint16_t> out_;   // 4 per pixel (POV-Ray encodes to at most 16 bits)
     unsigned SpansPerRow() const { return (width_ + kSpan - 1) / kSpan; }
     std::size_t SpanLength(unsigned x0) const { return std::size_t(width_ - x0 < kSpan ? width_ - x0 : kSpan); }
 
-    std::vector<float> spans_;           // 5 per pixel, the spans KeepSpan saw (allocated on first use)
-    std::vector<std::uint8_t> spanKept_; // per span: spans_ and out_ hold it
-    std::vector<std::uint8_t> spanPixel_; // per pixel (with spans_): out_ encodes its spans_ bits
+    ZeroedArray<float> spans_;           // 5 per pixel, the spans KeepSpan saw (allocated on first use)
+    ZeroedArray<std::uint8_t> spanKept_; // per span: spans_ and out_ hold it
+    ZeroedArray<std::uint8_t> spanPixel_; // per pixel (with spans_): out_ encodes its spans_ bits
 };
 
 }  // namespace povrayfc
