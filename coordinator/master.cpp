@@ -635,7 +635,7 @@ void Master::progress()
 void Master::flush_preview(bool force)
 {
     std::string err;
-    if (!preview_.flush(now(), force, err)) {
+    if (!preview_.flush(now(), force, err, force ? -1 : progress_state().eta)) {
         report_.clear_line();
         fprintf(stderr, "fc-master: warning: the preview is turned off: %s\n", err.c_str());
     }

@@ -120,11 +120,23 @@ bool Preview::write_png(const std::string &name, int w, int h, const std::vector
     return true;
 }
 
-bool Preview::flush(double now, bool force, std::string &err)
+bool Preview::flush(double now, bool force, std::string &err, double time_left)
 {
-    if (!on_ || !dirty_ || (!force && (now < first_ || now - last_ < wait_)) ||
-        (force && !written_ && now < first_))
+    if (!on_ || !dirty_)
         return true;
+    if (force) {
+        // The end brings files up to date that exist (this run's or an earlier one's); a
+        // render that wrote none while it ran writes none.
+        if (!written_)
+            return true;
+    } else {
+        if (now < first_ || now - last_ < wait_)
+            return true;
+        // Not worth a first write when the render is about to end (asked again every tick:
+        // an ETA can grow).
+        if (!written_ && time_left >= 0 && time_left < kMinTimeLeft)
+            return true;
+    }
     // A render whose frames came whole from POV-Ray may not have OpenImageIO yet: it loads
     // in the background (0.4 s of CPU), and the files are written at a later call.
     if (!force && !image_io_ready()) {

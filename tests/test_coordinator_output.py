@@ -17,7 +17,7 @@ import pytest
 
 from conftest import (COORDINATOR_SCENES, coordinator_renderer, coordinator_stats, frame_files,
                       load_rgb, master_with_failing_image_writer)
-from fcutil import LONG_COORDINATOR_RENDER
+from fcutil import LONG_COORDINATOR_RENDER, TOP
 
 pytestmark = pytest.mark.usefixtures("coordinator_build")
 
@@ -512,6 +512,15 @@ def test_unsupported_output_is_refused(coordinator, tmp_path, opt, words):
 
 
 # --- the live preview -------------------------------------------------------------------------
+
+def test_preview_unit_tests():
+    # When the preview writes: not before its first write is due, not for a render about to
+    # end, not at the end of a render that wrote none (preview_test.cpp).
+    r = subprocess.run(["make", "-C", str(TOP / "coordinator"), "test-preview"],
+                       capture_output=True, text=True)
+    assert r.returncode == 0, r.stdout + r.stderr
+    assert "all checks passed" in r.stdout
+
 
 # Sequence division has not loaded OpenImageIO when the preview is first due: it loads then,
 # in the background, and the preview follows.
