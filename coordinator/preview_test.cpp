@@ -1,7 +1,6 @@
 // preview_test.cpp - unit tests of when the live preview writes (no PVM, no renderer; nothing
 // here needs OpenImageIO, whose loading is what a write starts with).
 // Run: make -C coordinator test-preview
-#include <sys/stat.h>
 #include <unistd.h>
 
 #include <cstdio>

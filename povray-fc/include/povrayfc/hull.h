@@ -61,8 +61,8 @@ inline bool MeetsWidened(const Segment &s, const Box &box, double m) {
     // a slab test's three divisions cost more than the rest of the test together, and
     // this runs for every stored segment near a change every frame. Every length is
     // scaled by k, the direction's largest component (> 0, see MakeSegment), which spares
-    // the one division left: the comparisons scale alike, and the rounding this moves is
-    // ~1e-16 of the magnitudes, far inside m.
+    // the division that bounds an unbounded ray: the comparisons scale alike, and the
+    // rounding this moves is ~1e-16 of the magnitudes, far inside m.
     const double ox = s.origin[0], oy = s.origin[1], oz = s.origin[2];
     const double dx = s.direction[0], dy = s.direction[1], dz = s.direction[2];
     const double cx = 0.5 * (box.lo.x + box.hi.x), cy = 0.5 * (box.lo.y + box.hi.y), cz = 0.5 * (box.lo.z + box.hi.z);

@@ -101,9 +101,11 @@ class SampleRecorder {
         segments_->push_back(s);
         const std::uint8_t fan = apexes_->OriginFan(origin);
         fanOf_->push_back(fan);
-        // POV-Ray records a ray when it found what the ray hits, before it shades that
-        // point: shadow rays after a ray that did not start at the camera (a reflected or
-        // refracted one) leave the points it hit.
+        // POV-Ray records a ray when it found what the ray hits, and lights a point
+        // (its shadow tests) before it follows the reflected and refracted rays: shadow
+        // rays after a ray that did not start at the camera leave the points such rays
+        // hit. (Which bundle a segment joins never changes a pixel, only how tight the
+        // cones are.)
         deep_ |= fan == FanApexes::kLoose;
     }
     // A shadow ray towards the light point `aim` (reaching it, or stopped short by tmax).
