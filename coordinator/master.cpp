@@ -581,20 +581,24 @@ void Master::check_timeouts()
     }
 }
 
+void Master::work_done(double &elapsed, double &fraction, double &eta) const
+{
+    elapsed = start_ > 0 ? now() - start_ : 0;
+    // Only this run's work: the tiles of frames already there are neither done nor to do.
+    long tiles = sched_->tiles();
+    long todo = tiles * long(int(scene_.frames.size()) - resumed_);
+    long done = sched_->cells_done() - tiles * long(resumed_);
+    fraction = todo > 0 ? double(std::max(0L, done)) / double(todo) : 1;
+    eta = fraction > 0.02 && fraction < 1 ? elapsed * (1 - fraction) / fraction : -1;
+}
+
 ProgressState Master::progress_state() const
 {
     ProgressState p;
-    p.elapsed = start_ > 0 ? now() - start_ : 0;
     p.resumed = resumed_;
     p.frames_todo = int(scene_.frames.size()) - resumed_;
     p.frames_done = rendered_ + skipped_;
-    // Only this run's work: the tiles of frames already there are neither done nor to do.
-    long tiles = sched_->tiles();
-    long todo = tiles * long(p.frames_todo);
-    long done = sched_->cells_done() - tiles * long(resumed_);
-    p.fraction = todo > 0 ? double(std::max(0L, done)) / double(todo) : 1;
-    if (p.fraction > 0.02 && p.fraction < 1)
-        p.eta = p.elapsed * (1 - p.fraction) / p.fraction;
+    work_done(p.elapsed, p.fraction, p.eta);
     std::set<int> flight;
     for (auto &kv : sched_->jobs())
         if (kv.second.live)
@@ -635,7 +639,10 @@ void Master::progress()
 void Master::flush_preview(bool force)
 {
     std::string err;
-    if (!preview_.flush(now(), force, err, force ? -1 : progress_state().eta)) {
+    double elapsed = 0, fraction = 0, eta = -1;
+    if (!force)
+        work_done(elapsed, fraction, eta);
+    if (!preview_.flush(now(), force, err, eta)) {
         report_.clear_line();
         fprintf(stderr, "fc-master: warning: the preview is turned off: %s\n", err.c_str());
     }

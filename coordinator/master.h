@@ -65,6 +65,9 @@ private:
     void check_timeouts();
     void progress();
     void flush_preview(bool force);
+    // Seconds since the loop began, the share of this run's tiles done, and the estimated
+    // seconds to go (-1 while too little is done to tell).
+    void work_done(double &elapsed, double &fraction, double &eta) const;
     ProgressState progress_state() const;
     RunSummary run_summary(bool ok, double elapsed) const;
     void fatal(const std::string &msg);

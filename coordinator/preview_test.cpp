@@ -8,20 +8,11 @@
 #include <string>
 #include <vector>
 
+#include "check.h"
 #include "image_io.h"
 #include "preview.h"
 
 using namespace fc;
-
-static int failures = 0;
-
-#define CHECK(cond)                                                                  \
-    do {                                                                             \
-        if (!(cond)) {                                                               \
-            fprintf(stderr, "%s:%d: CHECK failed: %s\n", __FILE__, __LINE__, #cond); \
-            failures++;                                                              \
-        }                                                                            \
-    } while (0)
 
 // A write begins by loading OpenImageIO in the background: whether one was asked for.
 static bool write_begun()
@@ -65,10 +56,5 @@ int main()
     }
     wait_image_io();    // (fc-image.so is not beside this test: its loading fails, harmlessly)
     rmdir(tmpl);
-    if (failures) {
-        fprintf(stderr, "%d check(s) failed\n", failures);
-        return 1;
-    }
-    printf("all checks passed\n");
-    return 0;
+    return check_summary("preview_test");
 }

@@ -7,20 +7,11 @@
 #include <set>
 #include <vector>
 
+#include "check.h"
 #include "render_blocks.h"
 #include "schedule.h"
 
 using namespace fc;
-
-static int failures = 0;
-
-#define CHECK(cond)                                                                  \
-    do {                                                                             \
-        if (!(cond)) {                                                               \
-            fprintf(stderr, "%s:%d: CHECK failed: %s\n", __FILE__, __LINE__, #cond); \
-            failures++;                                                              \
-        }                                                                            \
-    } while (0)
 
 static const Rect kArea{0, 0, 160, 120};
 
@@ -738,10 +729,5 @@ int main()
         test_simulation(Division::Frame, seed, true);
         test_simulation(Division::Hybrid, seed, true);
     }
-    if (failures) {
-        fprintf(stderr, "schedule_test: %d check(s) failed\n", failures);
-        return 1;
-    }
-    printf("schedule_test: all checks passed\n");
-    return 0;
+    return check_summary("schedule_test");
 }
