@@ -156,9 +156,11 @@ int FrameRecordReader::next(FrameRecord &rec, std::string &err)
         return -1;
     if (buf_.size() - (nl + 1) < payload + file)
         return 0;
-    auto start = buf_.begin() + long(nl + 1);
-    rec.data.assign(start, start + long(payload));
-    rec.file.assign(start + long(payload), start + long(payload + file));
+    // Through uint8_t pointers: assigned from the string's char iterators, the bytes were
+    // converted one by one instead of copied as a block (a tenth of fc-slave's CPU).
+    const uint8_t *start = reinterpret_cast<const uint8_t *>(buf_.data()) + nl + 1;
+    rec.data.assign(start, start + payload);
+    rec.file.assign(start + payload, start + payload + file);
     pos_ = nl + 1 + payload + file;
     return 1;
 }

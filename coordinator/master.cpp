@@ -780,6 +780,7 @@ using namespace fc;
 
 int main(int argc, char **argv)
 {
+    keep_freed_memory();
     Options opt = parse_options(argc, argv);
     // OpenBLAS, loaded with OpenImageIO, would start a spinning thread per core for nothing.
     setenv("OPENBLAS_NUM_THREADS", "1", 0);

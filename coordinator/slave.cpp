@@ -360,6 +360,7 @@ int main(int argc, char **argv)
         return 0;
     }
     install_signal_handlers(on_signal);
+    keep_freed_memory();
 
     Slave slave;
     std::string err;

@@ -3,6 +3,7 @@
 
 #include <dirent.h>
 #include <fcntl.h>
+#include <malloc.h>
 #include <poll.h>
 #include <signal.h>
 #include <sys/prctl.h>
@@ -383,6 +384,13 @@ std::string LineSplitter::rest()
     std::string r;
     r.swap(partial_);
     return r;
+}
+
+void keep_freed_memory()
+{
+    // 32 MiB is the largest mmap threshold glibc accepts: blocks up to it come from the heap.
+    mallopt(M_MMAP_THRESHOLD, 32 << 20);
+    mallopt(M_TRIM_THRESHOLD, INT_MAX);
 }
 
 bool start_child(const std::vector<std::string> &argv, const std::string &cwd, int nice_inc,

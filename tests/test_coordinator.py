@@ -82,6 +82,15 @@ def test_schedule_unit_tests():
     assert "all checks passed" in r.stdout
 
 
+def test_memory_unit_tests():
+    # fc-master and fc-slave keep freed frame buffers for the next frame instead of faulting
+    # their pages in again (memory_test.cpp).
+    r = subprocess.run(["make", "-C", os.path.join(TOP, "coordinator"), "test-memory"],
+                       capture_output=True, text=True)
+    assert r.returncode == 0, r.stdout + r.stderr
+    assert "all checks passed" in r.stdout
+
+
 @pytest.mark.parametrize("fc", [False, True], ids=["no-fc", "fc"])
 @pytest.mark.parametrize("slaves", [1, 2, 3])
 @pytest.mark.parametrize("division", ["sequence", "frame", "hybrid"])
