@@ -40,6 +40,7 @@ bool SampleIsDirty(const StoredSample &s, const BlockRecord &record, const Chang
 bool BlockTracer::Begin(std::uint32_t serial, int left, int top, int right, int bottom) {
     const FramePlan &plan = *plan_;
     endedActive_ = false;
+    sameOrder_ = false;
     active_ = plan.mode != FramePlan::Mode::kIdle;
     if (!active_) return false;
     record_ = plan.mode == FramePlan::Mode::kRecord;
@@ -109,6 +110,7 @@ bool BlockTracer::Begin(std::uint32_t serial, int left, int top, int right, int 
     }
     nextOld_ = 0;
     oldIndexed_ = false;
+    sameOrder_ = true;
     // Reused segments keep their fan numbers, so the new record starts from the old apexes.
     next_.apexes = old_->apexes;
     return false;
@@ -168,6 +170,7 @@ bool BlockTracer::Reuse(double x, double y, float rgbft[5]) {
     if (!FindOld(x, y, i) || oldDirty_[i]) return false;
     const StoredSample &s = old_->samples[i];
     std::copy(s.colour, s.colour + 5, rgbft);
+    sameOrder_ = sameOrder_ && i == next_.samples.size();
     // Its segments stay in old_ until End gathers the new record's (one copy, not two).
     next_.samples.push_back(s);
     keptFromOld_.push_back(1);
@@ -187,6 +190,10 @@ void BlockTracer::EndSample(double x, double y, const float rgbft[5]) {
     MarkTraced(x, y);
     if (!record_) return;
     StopRecordingRays();
+    if (old_) {
+        const std::size_t at = next_.samples.size();
+        sameOrder_ = sameOrder_ && at < old_->samples.size() && old_->samples[at].x == x && old_->samples[at].y == y;
+    }
     StoredSample s;
     s.x = x;
     s.y = y;
@@ -264,6 +271,12 @@ void BlockTracer::End() {
     plan.counters->reusedSamples += reusedSamples_;
     plan.counters->replayedBlocks += 1;
 
+    if (record_ && old_ && UpdateInPlace()) {
+        old_ = nullptr;
+        active_ = false;
+        endedActive_ = true;
+        return;
+    }
     // An exact-size copy: the scratch keeps its capacity for the next block, and the
     // store holds no slack.
     auto record = std::make_unique<BlockRecord>();
@@ -318,6 +331,90 @@ void BlockTracer::GatherSegments(BlockRecord &record) {
         }
         s.firstSegment = std::uint32_t(at);
     }
+}
+
+bool BlockTracer::UpdateInPlace() {
+    BlockRecord &r = *old_;
+    if (!sameOrder_ || next_.samples.size() != r.samples.size() || !r.fansBuilt) return false;
+    std::size_t fresh = 0;
+    bool everythingReplaced = false;
+    tracedIndices_.clear();
+    for (std::size_t i = 0; i < next_.samples.size(); ++i) {
+        if (keptFromOld_[i]) continue;
+        const StoredSample &traced = next_.samples[i];
+        StoredSample &stored = r.samples[i];
+        const bool storedHasSegments = stored.segmentCount != StoredSample::kEverything;
+        everythingReplaced |= !storedHasSegments;
+        if (traced.segmentCount == StoredSample::kEverything) {
+            if (storedHasSegments) r.deadSegments += stored.segmentCount;
+            stored = traced;
+            r.hasEverything = true;
+            continue;
+        }
+        tracedIndices_.push_back(std::uint32_t(i));
+        std::size_t at = stored.firstSegment;
+        if (!storedHasSegments || stored.segmentCount != traced.segmentCount) {
+            if (storedHasSegments) r.deadSegments += stored.segmentCount;
+            at = r.segments.size();
+            // An eighth more room, not double: a record is kept for the whole run.
+            const std::size_t need = at + traced.segmentCount;
+            if (need > r.segments.capacity()) {
+                r.segments.reserve(need + need / 8);
+                r.fanOf.reserve(need + need / 8);
+            }
+            r.segments.resize(need);
+            r.fanOf.resize(need);
+        }
+        std::copy_n(next_.segments.data() + traced.firstSegment, traced.segmentCount, r.segments.data() + at);
+        std::copy_n(nextFanOf_.data() + traced.firstSegment, traced.segmentCount, r.fanOf.data() + at);
+        stored = traced;
+        stored.firstSegment = std::uint32_t(at);
+        fresh += traced.segmentCount;
+    }
+    if (4 * r.deadSegments > r.segments.size()) CompactSegments(r);
+    // The traced samples' segments, in the record's numbering (after any compaction).
+    tracedSegments_.clear();
+    tracedGroups_.clear();
+    for (std::uint32_t i : tracedIndices_) {
+        const StoredSample &s = r.samples[i];
+        tracedSegments_.emplace_back(s.firstSegment, s.segmentCount);
+        tracedGroups_.push_back(s.group);
+    }
+    // A sample that depended on everything was traced again: is there another one left?
+    if (everythingReplaced) {
+        r.hasEverything = false;
+        for (const StoredSample &s : r.samples) r.hasEverything |= s.segmentCount == StoredSample::kEverything;
+    }
+    std::copy(next_.pixels.begin(), next_.pixels.end(), r.pixels.begin());
+    r.apexes = next_.apexes;
+    // Grow the cones by what was traced anew, unless much of the block is new (as End).
+    if (4 * fresh <= r.segments.size() - r.deadSegments) {
+        GrowRecordFansInPlace(r, tracedSegments_, tracedGroups_);
+    } else {
+        r.fans = BlockFans();
+        r.groupFans.clear();
+        r.fansBuilt = false;
+    }
+    return true;
+}
+
+void BlockTracer::CompactSegments(BlockRecord &record) {
+    std::vector<Segment> segments;
+    std::vector<std::uint8_t> fanOf;
+    segments.reserve(record.segments.size() - record.deadSegments);
+    fanOf.reserve(segments.capacity());
+    for (StoredSample &s : record.samples) {
+        if (s.segmentCount == StoredSample::kEverything) continue;
+        const std::size_t at = segments.size();
+        segments.insert(segments.end(), record.segments.begin() + s.firstSegment,
+                        record.segments.begin() + s.firstSegment + s.segmentCount);
+        fanOf.insert(fanOf.end(), record.fanOf.begin() + s.firstSegment,
+                     record.fanOf.begin() + s.firstSegment + s.segmentCount);
+        s.firstSegment = std::uint32_t(at);
+    }
+    record.segments.swap(segments);
+    record.fanOf.swap(fanOf);
+    record.deadSegments = 0;
 }
 
 bool BlockTracer::ChangedRect(int &left, int &top, int &right, int &bottom) const {

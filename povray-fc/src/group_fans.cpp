@@ -39,4 +39,23 @@ void GrowRecordFans(BlockRecord &record, const std::vector<BlockFans> &oldGroups
     record.fansBuilt = true;
 }
 
+void GrowRecordFansInPlace(BlockRecord &record, const std::vector<std::pair<std::size_t, std::size_t>> &added,
+                           const std::vector<std::uint32_t> &addedGroup) {
+    thread_local std::vector<std::vector<std::pair<std::size_t, std::size_t>>> addedTo;
+    addedTo.resize(record.groupFans.size());
+    for (auto &a : addedTo) a.clear();
+    for (std::size_t i = 0; i < added.size(); ++i) {
+        addedTo[addedGroup[i]].push_back(added[i]);
+        // The kept segments' numbers were made valid when the cones were built.
+        for (std::size_t k = added[i].first; k < added[i].first + added[i].second; ++k)
+            if (record.fanOf[k] >= record.apexes.count) record.fanOf[k] = BlockFans::kLoose;
+    }
+    for (std::size_t g = 0; g < record.groupFans.size(); ++g)
+        if (!addedTo[g].empty())
+            record.groupFans[g] = GrowFans(record.groupFans[g], record.segments.data(), record.fanOf.data(),
+                                           record.apexes, addedTo[g]);
+    record.fans = MergeFans(record.groupFans, record.apexes);
+    record.fansBuilt = true;
+}
+
 }  // namespace povrayfc

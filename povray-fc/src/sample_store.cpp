@@ -20,7 +20,7 @@ std::size_t SampleStore::SampleCount() const {
 std::size_t SampleStore::SegmentCount() const {
     std::size_t n = 0;
     for (const auto &b : blocks_)
-        if (b) n += b->segments.size();
+        if (b) n += b->segments.size() - b->deadSegments;
     return n;
 }
 

@@ -508,3 +508,95 @@ TEST_F(FrameCoherenceRun, ReplayReusesCleanSamplesAskedInAnyOrder) {
 
 }  // namespace
 }  // namespace povrayfc
+
+namespace povrayfc {
+namespace {
+
+// A block replayed with its samples in the same order is updated in place: the record is
+// the same object, a traced sample's segments overwrite its old ones when they are as many
+// and go to the end otherwise, the record is compacted once a quarter is dead, and the
+// updated samples are still found by later changes.
+TEST_F(FrameCoherenceRun, ReplayedBlockInTheSameOrderIsUpdatedInPlace) {
+    FrameCoherence &fc = FrameCoherence::Get();
+    const int n = kBlock * kBlock;
+    // Sample 0's ray reaches x = 0 at z = 10..11 and is recorded as `pieces` segments; the
+    // others end before z = 10. The box sits on that ray at x = 0, or off it.
+    auto frame = [&](int number, bool boxOnRay, bool reversed, int pieces) {
+        ToyScene s;
+        const double boxX = boxOnRay ? 0.0 : 5.0;
+        s.boxes.push_back({7, Box{Vec3{boxX - 0.5, -0.5, 10}, Vec3{boxX + 0.5, 0.5, 11}}});
+        PublishSceneSignature(kScene, Signature(s));
+        fc.BeginFrame(true, ToySetup(number), kScene, {});
+        BlockTracer tracer(fc.Plan());
+        int traced = 0;
+        if (!tracer.Begin(0, 0, 0, kBlock - 1, kBlock - 1)) {
+            for (int k = 0; k < n; ++k) {
+                const int i = reversed ? n - 1 - k : k;
+                const double x = i % kBlock, y = i / kBlock;
+                float c[5] = {0, 0, 0, 0, 0};
+                if (tracer.Reuse(x, y, c)) continue;
+                tracer.BeginSample();
+                if (i == 0) {
+                    for (int p = 0; p < pieces; ++p) {
+                        const double o[3] = {x, y, -3.0 + 20.0 * p / pieces}, d[3] = {0, 0, 1};
+                        RecordRaySegment(o, d, 20.0 / pieces);
+                    }
+                } else {
+                    const double o[3] = {x, y, -3}, d[3] = {0, 0, 1};
+                    RecordRaySegment(o, d, 1.0);
+                }
+                tracer.EndSample(x, y, c);
+                ++traced;
+            }
+            EndBlockInBlack(tracer);
+        }
+        fc.EndFrame(0);
+        return traced;
+    };
+    auto record = [&] { return fc.Plan().store->Find(0); };
+    // Every sample's segments lie inside the record, none shared, and the dead ones are
+    // counted: live + dead = all, and at most a quarter dead.
+    auto consistent = [&](const BlockRecord &r) {
+        std::size_t live = 0;
+        std::vector<int> owner(r.segments.size(), 0);
+        for (const StoredSample &smp : r.samples) {
+            if (smp.segmentCount == StoredSample::kEverything) continue;
+            if (std::size_t(smp.firstSegment) + smp.segmentCount > r.segments.size()) return false;
+            for (std::uint32_t k = 0; k < smp.segmentCount; ++k)
+                if (owner[smp.firstSegment + k]++) return false;
+            live += smp.segmentCount;
+        }
+        return r.fanOf.size() == r.segments.size() && live + r.deadSegments == r.segments.size() &&
+               4 * r.deadSegments <= r.segments.size();
+    };
+
+    ASSERT_EQ(frame(1, true, false, 1), n);
+    const BlockRecord *first = record();
+    ASSERT_NE(first, nullptr);
+    // The box moves off sample 0's ray: it alone is traced, in place, its one segment
+    // overwritten by one.
+    EXPECT_EQ(frame(2, false, false, 1), 1);
+    EXPECT_EQ(record(), first);
+    EXPECT_EQ(record()->deadSegments, 0u);
+    EXPECT_TRUE(consistent(*record()));
+    // Back onto the ray, now recorded as three segments: found dirty, traced, appended.
+    EXPECT_EQ(frame(3, true, false, 3), 1);
+    EXPECT_EQ(record(), first);
+    EXPECT_EQ(record()->samples[0].segmentCount, 3u);
+    EXPECT_TRUE(consistent(*record()));
+    // Many more frames, the piece count changing every time: always found, always in place,
+    // compacted once a quarter is dead.
+    for (int f = 4; f < 40; ++f) {
+        EXPECT_EQ(frame(f, f % 2 == 1, false, 1 + f % 4), 1) << "frame " << f;
+        EXPECT_EQ(record(), first) << "frame " << f;
+        EXPECT_TRUE(consistent(*record())) << "frame " << f;
+    }
+    // Asked in another order the block gets a new record, as before.
+    EXPECT_EQ(frame(40, false, true, 1), 1);
+    EXPECT_NE(record(), first);
+    EXPECT_TRUE(consistent(*record()));
+    EXPECT_EQ(record()->deadSegments, 0u);
+}
+
+}  // namespace
+}  // namespace povrayfc

@@ -31,6 +31,12 @@ void GrowRecordFans(BlockRecord &record, const std::vector<BlockFans> &oldGroups
                     const std::vector<std::pair<std::size_t, std::size_t>> &added,
                     const std::vector<std::uint32_t> &addedGroup);
 
+// GrowRecordFans for a record updated in place: `record.groupFans` are its groups' cones
+// before the update; only the groups that gained segments are grown (a replayed block
+// traces a few of its samples) and only the added segments' fan numbers validated.
+void GrowRecordFansInPlace(BlockRecord &record, const std::vector<std::pair<std::size_t, std::size_t>> &added,
+                           const std::vector<std::uint32_t> &addedGroup);
+
 }  // namespace povrayfc
 
 #endif

@@ -10,8 +10,11 @@
 // the same sample values gives the same pixels, bit for bit, for every AA method.
 //
 // Why blocks. POV-Ray hands each render block to one thread, so a block's record is
-// read and rebuilt by that thread alone, with no locks; a record is replaced whole when
-// its block is rendered again, so nothing fragments.
+// read and rebuilt by that thread alone, with no locks. A block replayed with the same
+// samples as before is updated in place (BlockTracer::End): a traced sample's segments
+// overwrite its old ones when they are as many, else go to the end of the record, the
+// old ones left dead; a record more than a quarter dead is compacted. Otherwise the record is
+// replaced whole.
 #ifndef POVRAYFC_SAMPLE_STORE_H
 #define POVRAYFC_SAMPLE_STORE_H
 
@@ -47,6 +50,9 @@ struct BlockRecord {
     bool opaque = false;
     std::vector<StoredSample> samples;
     std::vector<Segment> segments;
+    // Segments (and their fanOf entries) no sample refers to any more: left by in-place
+    // updates until the record is compacted.
+    std::size_t deadSegments = 0;
     std::vector<float> pixels;  // 5 floats per pixel, row by row
     FanApexes apexes;           // the camera and light points the segments are bundled by
     std::vector<std::uint8_t> fanOf;  // per segment: its bundle (FanApexes number) or kLoose
