@@ -60,7 +60,7 @@ bool BlockHulls::SegmentMayMeet(const Segment &s, std::uint8_t fanNumber, const 
     if (!changes.MayMeetUnion(s)) return false;
     if (all) return changes.MayMeet(s);
     for (; mask; mask &= mask - 1)
-        if (MayMeet(s, changes.Hulls()[local[std::size_t(__builtin_ctzll(mask))]])) return true;
+        if (changes.MayMeetHull(s, local[std::size_t(__builtin_ctzll(mask))])) return true;
     return false;
 }
 

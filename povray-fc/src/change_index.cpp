@@ -25,6 +25,8 @@ ChangeIndex::ChangeIndex(std::vector<Hull> hulls, int gridResolution) {
     for (Hull &h : hulls)
         if (!h.box.Empty()) hulls_.push_back(std::move(h));
     for (const Hull &h : hulls_) bounds_.Grow(h.box);
+    for (const Hull &h : hulls_) tests_.push_back(PrepareHullTest(h));
+    boundsFinite_ = bounds_.IsFinite();
     if (!hulls_.empty() && bounds_.IsFinite()) {
         boundsCentre_ = Centre(bounds_);
         boundsHalfExtent_ = HalfExtent(bounds_);
@@ -63,20 +65,20 @@ ChangeIndex::ChangeIndex(std::vector<Hull> hulls, int gridResolution) {
 
 bool ChangeIndex::MayMeet(const Segment &s) const {
     if (hulls_.empty()) return false;
-    if (!bounds_.IsFinite()) return true;
+    if (!boundsFinite_) return true;
     // A hull inside the union has a margin at most twice the union's (max norm), so the
     // union widened by twice its own margin holds every hull widened by its margin.
     const double margin = 2.0 * SegmentMargin(s, boundsCentre_, boundsHalfExtent_);
     if (!MeetsWidened(s, bounds_, margin)) return false;
     if (grid_ && margin <= gridSlack_) return MayMeetThroughGrid(s);
-    for (const Hull &h : hulls_)
-        if (povrayfc::MayMeet(s, h)) return true;
+    for (std::size_t i = 0; i < hulls_.size(); ++i)
+        if (MayMeetHull(s, i)) return true;
     return false;
 }
 
 bool ChangeIndex::MayMeetUnion(const Segment &s) const {
     if (hulls_.empty()) return false;
-    if (!bounds_.IsFinite()) return true;
+    if (!boundsFinite_) return true;
     return MeetsWidened(s, bounds_, 2.0 * SegmentMargin(s, boundsCentre_, boundsHalfExtent_));
 }
 
@@ -89,7 +91,7 @@ bool ChangeIndex::MayMeetThroughGrid(const Segment &s) const {
     std::uint32_t v;
     while (walker.Next(v)) {
         for (std::uint32_t k = cellStart_[v]; k < cellStart_[v + 1]; ++k)
-            if (povrayfc::MayMeet(s, hulls_[cellHulls_[k]])) return true;
+            if (MayMeetHull(s, cellHulls_[k])) return true;
     }
     return false;
 }

@@ -91,19 +91,36 @@ bool MayMeet(const Segment &s, const Box &box) {
     return MeetsWidened(s, box, SegmentMargin(s, Centre(box), HalfExtent(box)));
 }
 
-bool MayMeet(const Segment &s, const Hull &hull) {
-    if (!MayMeet(s, hull.box)) return false;
+bool MayMeet(const Segment &s, const Hull &hull) { return MayMeet(s, hull, PrepareHullTest(hull)); }
+
+HullTest PrepareHullTest(const Hull &hull) {
+    HullTest t;
+    t.empty = hull.box.Empty();
+    t.finite = hull.box.IsFinite();
+    if (t.empty || !t.finite) return t;
+    t.centre = Centre(hull.box);
+    t.halfExtent = HalfExtent(hull.box);
+    t.axis = hull.capsule.b - hull.capsule.a;
+    t.axisLength = Norm(t.axis);
+    return t;
+}
+
+bool MayMeet(const Segment &s, const Hull &hull, const HullTest &test) {
+    // The box (as MayMeet(s, box)), then the capsule, with one margin for both.
+    if (test.empty) return false;
+    if (!test.finite) return true;
+    const double m = SegmentMargin(s, test.centre, test.halfExtent);
+    if (!MeetsWidened(s, hull.box, m)) return false;
     if (!hull.hasCapsule) return true;
     const Capsule &c = hull.capsule;
-    const double m = SegmentMargin(s, Centre(hull.box), HalfExtent(hull.box));
     const double reach = c.radius + m;
-    const Vec3 o = Origin(s), d = Direction(s), axis = c.b - c.a;
+    const Vec3 o = Origin(s), d = Direction(s);
     // Only the part of the ray within reach of the capsule's axis matters; clipping an
     // unbounded ray there keeps the arithmetic finite.
     const double dn = Norm(d);
-    const double far = (Norm(o - c.a) + Norm(axis) + reach) / dn * (1.0 + 1e-9);
+    const double far = (Norm(o - c.a) + test.axisLength + reach) / dn * (1.0 + 1e-9);
     const double length = std::min(double(s.length), far);
-    const double dist = SegmentSegmentDistance(o, length * d, c.a, axis);
+    const double dist = SegmentSegmentDistance(o, length * d, c.a, test.axis);
     return dist <= reach;
 }
 

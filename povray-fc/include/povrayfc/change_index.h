@@ -42,12 +42,16 @@ class ChangeIndex {
     bool MayMeet(const Segment &s) const;
     // True when it may meet the box around all changed hulls (a cheap first test).
     bool MayMeetUnion(const Segment &s) const;
+    // True when it may meet changed hull i (MayMeet(s, Hulls()[i]), prepared once).
+    bool MayMeetHull(const Segment &s, std::size_t i) const { return povrayfc::MayMeet(s, hulls_[i], tests_[i]); }
 
   private:
     bool MayMeetThroughGrid(const Segment &s) const;
 
     std::vector<Hull> hulls_;
+    std::vector<HullTest> tests_;  // per hull
     Box bounds_;  // union of the hull boxes
+    bool boundsFinite_ = true;
     // Its centre and half extent (max norm), for every segment's margin: worked out once.
     Vec3 boundsCentre_{0.0, 0.0, 0.0};
     double boundsHalfExtent_ = 0.0;

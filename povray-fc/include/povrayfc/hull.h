@@ -89,6 +89,20 @@ inline bool MeetsWidened(const Segment &s, const Box &box, double m) {
 // True when the ray a segment stands for may pass through the hull (box, then capsule).
 bool MayMeet(const Segment &s, const Hull &hull);
 
+// What MayMeet(segment, hull) works out from the hull alone: a frame tests tens of
+// thousands of segments against the same few hulls (ChangeIndex prepares them once).
+struct HullTest {
+    bool empty = true;
+    bool finite = false;
+    Vec3 centre{0.0, 0.0, 0.0};
+    double halfExtent = 0.0;     // max norm
+    Vec3 axis{0.0, 0.0, 0.0};    // the capsule's b - a
+    double axisLength = 0.0;
+};
+HullTest PrepareHullTest(const Hull &hull);
+// MayMeet(s, hull) with `test` = PrepareHullTest(hull): the same arithmetic, the same answer.
+bool MayMeet(const Segment &s, const Hull &hull, const HullTest &test);
+
 }  // namespace povrayfc
 
 #endif
