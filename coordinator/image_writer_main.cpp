@@ -173,13 +173,20 @@ bool encode_targa(Encoder &enc, int width, int height, bool rle, float file_gamm
         // v / 255.0f encodes back to v: floor(v / 255.0f * 255 + 0.5) = v. Opaque.
         const size_t row_bytes = size_t(width) * 3;
         const bool have_last = enc.last.size() == row_bytes * size_t(height);
+        // Only the pixels whose bytes changed are set again: the others hold the very floats
+        // setting them would store (a frame of fc changes a few pixels of the rows it changes).
         for (int y = 0; y < height; y++) {
             const unsigned char *row = rgb.data() + row_bytes * size_t(y);
-            if (have_last && std::memcmp(row, &enc.last[row_bytes * size_t(y)], row_bytes) == 0)
+            const unsigned char *before = have_last ? &enc.last[row_bytes * size_t(y)] : nullptr;
+            if (before != nullptr && std::memcmp(row, before, row_bytes) == 0)
                 continue;
-            for (int x = 0; x < width; x++, row += 3)
+            for (int x = 0; x < width; x++, row += 3) {
+                if (before != nullptr && row[0] == before[3 * x] && row[1] == before[3 * x + 1] &&
+                    row[2] == before[3 * x + 2])
+                    continue;
                 enc.image->SetRGBFTValue(x, y, row[0] / 255.0f, row[1] / 255.0f, row[2] / 255.0f,
                                          0.0f, 0.0f);
+            }
         }
         enc.last.swap(rgb);
         pov_base::Image::WriteOptions options;
