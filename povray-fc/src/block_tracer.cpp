@@ -295,7 +295,8 @@ void BlockTracer::End() {
         std::size_t fresh = 0;
         for (const auto &range : tracedSegments_) fresh += range.second;
         if (old_ && old_->fansBuilt && 4 * fresh <= record->segments.size()) {
-            GrowRecordFans(*record, old_->groupFans, tracedSegments_, tracedGroups_);
+            record->groupFans = std::move(old_->groupFans);  // old_ is replaced below
+            GrowRecordFans(*record, tracedSegments_, tracedGroups_);
         }
         for (const StoredSample &s : record->samples)
             record->hasEverything |= s.segmentCount == StoredSample::kEverything;
@@ -389,7 +390,7 @@ bool BlockTracer::UpdateInPlace() {
     r.apexes = next_.apexes;
     // Grow the cones by what was traced anew, unless much of the block is new (as End).
     if (4 * fresh <= r.segments.size() - r.deadSegments) {
-        GrowRecordFansInPlace(r, tracedSegments_, tracedGroups_);
+        GrowRecordFans(r, tracedSegments_, tracedGroups_);
     } else {
         r.fans = BlockFans();
         r.groupFans.clear();

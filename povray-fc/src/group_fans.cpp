@@ -22,25 +22,8 @@ void BuildRecordFans(BlockRecord &record) {
     record.fansBuilt = true;
 }
 
-void GrowRecordFans(BlockRecord &record, const std::vector<BlockFans> &oldGroups,
-                    const std::vector<std::pair<std::size_t, std::size_t>> &added,
+void GrowRecordFans(BlockRecord &record, const std::vector<std::pair<std::size_t, std::size_t>> &added,
                     const std::vector<std::uint32_t> &addedGroup) {
-    ValidateFanNumbers(record.fanOf, record.apexes);
-    thread_local std::vector<std::vector<std::pair<std::size_t, std::size_t>>> addedTo;
-    addedTo.resize(oldGroups.size());
-    for (auto &a : addedTo) a.clear();
-    for (std::size_t i = 0; i < added.size(); ++i) addedTo[addedGroup[i]].push_back(added[i]);
-    record.groupFans.clear();
-    record.groupFans.reserve(oldGroups.size());
-    for (std::size_t g = 0; g < oldGroups.size(); ++g)
-        record.groupFans.push_back(
-            GrowFans(oldGroups[g], record.segments.data(), record.fanOf.data(), record.apexes, addedTo[g]));
-    record.fans = MergeFans(record.groupFans, record.apexes);
-    record.fansBuilt = true;
-}
-
-void GrowRecordFansInPlace(BlockRecord &record, const std::vector<std::pair<std::size_t, std::size_t>> &added,
-                           const std::vector<std::uint32_t> &addedGroup) {
     thread_local std::vector<std::vector<std::pair<std::size_t, std::size_t>>> addedTo;
     addedTo.resize(record.groupFans.size());
     for (auto &a : addedTo) a.clear();

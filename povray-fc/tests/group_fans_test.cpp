@@ -193,8 +193,7 @@ TEST(GroupFans, GrownGroupsHoldTheSamplesTracedAnew) {
             added.emplace_back(recorder.First(), recorder.Count());
             addedGroup.push_back(s.group);
         }
-        const std::vector<BlockFans> oldGroups = record.groupFans;
-        GrowRecordFans(record, oldGroups, added, addedGroup);
+        GrowRecordFans(record, added, addedGroup);
         for (int k = 0; k < 10; ++k) {
             CheckGroups(record, ChangeIndex(SomeHulls(rng)), counts);
             if (HasFatalFailure()) return;

@@ -24,18 +24,13 @@ namespace povrayfc {
 // Builds `record.groupFans` and `record.fans` from its samples' segments.
 void BuildRecordFans(BlockRecord &record);
 
-// The same for a replayed block, cheaply: `oldGroups` were its groups' cones, `added` the
-// (first segment, count) of each sample traced anew and `addedGroup` its group; the
-// samples kept from before keep their segments inside the old cones.
-void GrowRecordFans(BlockRecord &record, const std::vector<BlockFans> &oldGroups,
-                    const std::vector<std::pair<std::size_t, std::size_t>> &added,
+// The same for a replayed block, cheaply: `record.groupFans` hold its groups' cones from
+// before, `added` the (first segment, count) of each sample traced anew and `addedGroup`
+// its group. The samples kept from before keep their segments inside the old cones; only
+// the groups that gained segments grow (a replayed block traces a few of its samples) and
+// only the added segments' fan numbers are validated.
+void GrowRecordFans(BlockRecord &record, const std::vector<std::pair<std::size_t, std::size_t>> &added,
                     const std::vector<std::uint32_t> &addedGroup);
-
-// GrowRecordFans for a record updated in place: `record.groupFans` are its groups' cones
-// before the update; only the groups that gained segments are grown (a replayed block
-// traces a few of its samples) and only the added segments' fan numbers validated.
-void GrowRecordFansInPlace(BlockRecord &record, const std::vector<std::pair<std::size_t, std::size_t>> &added,
-                           const std::vector<std::uint32_t> &addedGroup);
 
 }  // namespace povrayfc
 
