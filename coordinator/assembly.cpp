@@ -8,7 +8,6 @@
 #include <cstdio>
 #include <cstring>
 
-#include "frame_committer.h"
 #include "frame_record.h"
 #include "image_io.h"
 #include "povray.h"
@@ -200,9 +199,10 @@ bool FrameAssembly::put(int index, const std::vector<Rect> &rects, const std::ve
     return true;
 }
 
-bool FrameAssembly::encode(int index, std::vector<uint8_t> &samples, std::vector<uint8_t> &bytes,
-                           uint64_t &hash, std::string &err)
+bool FrameAssembly::write(int index, std::vector<uint8_t> &samples, bool &disk_full,
+                          std::string &err)
 {
+    disk_full = false;
     auto it = frames_in_flight_.find(index);
     if (it == frames_in_flight_.end()) {
         err = strf("internal error: frame %d has no pixels", frames_[size_t(index)]);
@@ -211,26 +211,38 @@ bool FrameAssembly::encode(int index, std::vector<uint8_t> &samples, std::vector
     Pending &p = it->second;
     if (!p.values.empty())
         p.quantizer->dither(p.values, width_, height_, p.samples);
-    bytes.clear();
+    std::vector<uint8_t> bytes;
     if (!p.file.empty())
         bytes.swap(p.file);
     else if (!encode_image(format_.oiio, format_.compression, width_, height_, format_.pixels,
                            p.samples.data(), bytes, err, p.file_gamma))
         return false;
-    hash = pixels_hash(p.samples);
+    std::string tmp = temp_path(index), dst = final_path(index);
+    if (!write_file_durably(tmp, bytes.data(), bytes.size(), err)) {
+        disk_full = errno == ENOSPC || errno == EDQUOT;
+        return false;
+    }
+    // Recorded before it gets its name: a master killed in between leaves a record whose
+    // file is missing or another (resume renders it again), never a complete frame under its
+    // final name that resume would not recognise and render again.
+    if (!dir_.record(base_name(dst), pixels_hash(p.samples), err)) {
+        disk_full = errno == ENOSPC || errno == EDQUOT;
+        unlink(tmp.c_str());
+        return false;
+    }
+    // Only a complete file gets the final name (rename replaces a damaged one atomically).
+    if (rename(tmp.c_str(), dst.c_str()) != 0) {
+        sys_fail(err, "rename " + tmp + " to " + dst);
+        unlink(tmp.c_str());
+        return false;
+    }
+    if (!sync_dir(dir_.path(), err)) {
+        disk_full = errno == ENOSPC || errno == EDQUOT;
+        return false;
+    }
     samples.swap(p.samples);
     frames_in_flight_.erase(it);
     return true;
-}
-
-bool FrameAssembly::write(int index, std::vector<uint8_t> &samples, bool &disk_full,
-                          std::string &err)
-{
-    disk_full = false;
-    std::vector<uint8_t> bytes;
-    uint64_t hash = 0;
-    return encode(index, samples, bytes, hash, err) &&
-           commit_frame(dir_, temp_path(index), final_path(index), bytes, hash, disk_full, err);
 }
 
 } // namespace fc

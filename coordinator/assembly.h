@@ -64,13 +64,9 @@ public:
              const std::string &encoding, const std::vector<uint8_t> &data,
              std::vector<uint8_t> file, double file_gamma, std::string &err);
 
-    // Encode frame index i in the output format into bytes, with the hash the journal
-    // records for it, and free its memory; its samples move to `samples` (for the preview).
-    // The bytes go to disk by commit_frame (frame_committer.h). False with err.
-    bool encode(int index, std::vector<uint8_t> &samples, std::vector<uint8_t> &bytes,
-                uint64_t &hash, std::string &err);
-    // encode, then commit_frame (temp name, checked writes and fsync, journal, rename). False
-    // with err; then disk_full tells whether the file system ran out of space.
+    // Write frame index i (encode, temp name, checked writes and fsync, rename, journal) and
+    // free its memory; its samples move to `samples` (for the preview). False with err; then
+    // disk_full tells whether the file system ran out of space.
     bool write(int index, std::vector<uint8_t> &samples, bool &disk_full, std::string &err);
 
     // Frames currently held in memory.

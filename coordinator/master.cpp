@@ -45,9 +45,6 @@ const int kJobsAhead = 2;           // jobs a slave holds: the one rendering and
 // Complete frames kept in memory while OpenImageIO loads; with more, the master waits for the
 // load. 32 slaves on 2 cores once slowed the load to 5 s, while all 24 frames completed.
 const size_t kFramesWhileLoading = 8;
-// Frames encoded and handed to the committer, not yet on disk, at most.
-const size_t kCommitsQueued = 4;
-const size_t kNoWait = SIZE_MAX;
 
 // The first line of a multi-line message (for warnings that go on).
 std::string first_line(const std::string &s)
@@ -230,52 +227,27 @@ bool Master::frame_finished(int index)
 {
     std::string err;
     std::vector<uint8_t> samples;
-    if (committer_) {
-        std::vector<uint8_t> bytes;
-        uint64_t hash = 0;
-        if (!assembly_->encode(index, samples, bytes, hash, err)) {
-            write_failed(index, err, false);
-            return false;
-        }
-        preview_.add(index, samples);
-        // A disk slower than the slaves holds the loop here, not frames in memory.
-        collect_commits(kCommitsQueued - 1);
-        committer_->submit(index, assembly_->temp_path(index), assembly_->final_path(index),
-                           std::move(bytes), hash);
-        max_frames_held_ = std::max(max_frames_held_,
-                                    int(assembly_->pending() + committer_->outstanding()));
-        return true;
-    }
     bool disk_full = false;
     if (!assembly_->write(index, samples, disk_full, err)) {
-        write_failed(index, err, disk_full);
+        std::string msg = strf("cannot write frame %d: %s", scene_.frames[size_t(index)],
+                               err.c_str());
+        if (disk_full) {
+            preview_.stop();    // its files would only take what a frame needs
+            unsigned long long avail = 0;
+            std::string ignored;
+            free_bytes(outdir_, avail, ignored);
+            int missing = int(scene_.frames.size()) - resumed_ - rendered_ - skipped_;
+            msg += strf("\nfc-master: the disk holding %s is full (%s free). The %d frame(s) "
+                        "there are complete; free some space and run the same command again to "
+                        "render the other %d",
+                        outdir_.c_str(), human_bytes(double(avail)).c_str(), resumed_ + rendered_,
+                        missing);
+        }
+        write_failed_ = true;
+        fatal(msg);
         return false;
     }
     preview_.add(index, samples);
-    return frame_written(index);
-}
-
-void Master::write_failed(int index, const std::string &err, bool disk_full)
-{
-    std::string msg = strf("cannot write frame %d: %s", scene_.frames[size_t(index)], err.c_str());
-    if (disk_full) {
-        preview_.stop();    // its files would only take what a frame needs
-        unsigned long long avail = 0;
-        std::string ignored;
-        free_bytes(outdir_, avail, ignored);
-        int missing = int(scene_.frames.size()) - resumed_ - rendered_ - skipped_;
-        msg += strf("\nfc-master: the disk holding %s is full (%s free). The %d frame(s) "
-                    "there are complete; free some space and run the same command again to "
-                    "render the other %d",
-                    outdir_.c_str(), human_bytes(double(avail)).c_str(), resumed_ + rendered_,
-                    missing);
-    }
-    write_failed_ = true;
-    fatal(msg);
-}
-
-bool Master::frame_written(int index)
-{
     frame_stats_[size_t(index)].finished_at = now() - start_;
     rendered_++;
     ShelloutResult r = shellouts_.run(Shellouts::PostFrame, scene_.frames[size_t(index)],
@@ -290,21 +262,6 @@ bool Master::frame_written(int index)
         quit_early_ = true;
     }
     return true;
-}
-
-// The frames the committer put on disk since the last look, once at most `unfinished` are
-// still to be committed. Its first failure is the run's; the frames queued behind one were
-// dropped, not written.
-void Master::collect_commits(size_t unfinished)
-{
-    if (!committer_)
-        return;
-    for (const FrameCommitter::Result &r : committer_->done(unfinished)) {
-        if (r.ok)
-            frame_written(r.index);
-        else if (!write_failed_)
-            write_failed(r.index, r.err, r.disk_full);
-    }
 }
 
 void Master::on_frame(int src)
@@ -415,22 +372,13 @@ void Master::on_frame(int src)
     dispatch();
 }
 
-// Take what the committer finished, then encode the complete frames and hand them to it (or
-// write them, without one), then, with wait, wait until every frame is on disk (the end of the
-// run). The receive loop calls this after every message and tick.
-void Master::write_complete_frames(bool wait)
-{
-    collect_commits(kNoWait);
-    write_unwritten(wait);
-    collect_commits(wait ? 0 : kNoWait);
-}
-
-// Encode the complete frames, unless they are encoded by OpenImageIO, it still loads and wait
-// is false: then up to kFramesWhileLoading stay in memory until it is ready, so that no slave
+// Write the complete frames, unless they are encoded by OpenImageIO, it still loads and wait
+// is false: then up to kFramesWhileLoading stay in memory until it is ready (the receive loop
+// calls this after every message and tick, and the end of the run waits), so that no slave
 // waits for its next job meanwhile. Frames fc-image-writer encodes do not wait for a load the
 // preview started. After a failed write or a shell-out that asked to stop, nothing more is
 // written, as one POV-Ray process would.
-void Master::write_unwritten(bool wait)
+void Master::write_complete_frames(bool wait)
 {
     if (unwritten_.empty() ||
         (!wait && unwritten_.size() <= kFramesWhileLoading && image_io_loading() &&

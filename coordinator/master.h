@@ -12,7 +12,6 @@
 
 #include "assembly.h"
 #include "cluster.h"
-#include "frame_committer.h"
 #include "master_options.h"
 #include "output_dir.h"
 #include "output_format.h"
@@ -60,11 +59,7 @@ private:
     void send_job(SlaveInfo &s, const Job &job);
     void cancel_jobs(const std::vector<Job> &jobs);
     bool frame_finished(int index);
-    bool frame_written(int index);
-    void write_failed(int index, const std::string &err, bool disk_full);
-    void collect_commits(size_t unfinished);
     void write_complete_frames(bool wait);
-    void write_unwritten(bool wait);
     void slave_gone(SlaveInfo &s, const std::string &why, bool respawn);
     void leave_out_host(int dtid, const std::string &last_error);
     void check_timeouts();
@@ -95,7 +90,6 @@ private:
     std::vector<Rect> tiles_;
     std::unique_ptr<Schedule> sched_;
     std::unique_ptr<FrameAssembly> assembly_;
-    std::unique_ptr<FrameCommitter> committer_;     // null: frames written on the loop
     Cluster cluster_;
     bool planned_ = false;
     double start_ = 0, spawn_time_ = 0, next_tick_ = 0;

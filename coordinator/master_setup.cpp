@@ -524,10 +524,6 @@ int Master::run()
         fprintf(stderr, "fc-master: %s\n", pre.message.c_str());
         return pre.action == ShelloutResult::Quit ? 0 : 1;
     }
-    // Frames go to disk off the receive loop, unless a Post_Frame_Command must find each frame
-    // on disk before the next one is written (as one POV-Ray process runs it).
-    if (shellouts_.commands[Shellouts::PostFrame].command.empty())
-        committer_.reset(new FrameCommitter(outdir_obj_));
     debug_log("probes done");
     if (!start_cluster()) {
         cluster_.stop();
@@ -550,7 +546,6 @@ int Master::run()
         }
     }
     finish(rc == 0);
-    debug_log("finished");
     if (!opt_.quiet)
         fputs(report_.summary(run_summary(rc == 0, elapsed)).c_str(), stderr);
     return rc;
