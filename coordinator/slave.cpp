@@ -153,6 +153,7 @@ void Slave::on_cancel()
     for (auto it = queue_.begin(); it != queue_.end(); ++it)
         if (it->job == job) {
             queue_.erase(it);
+            debug_log("job %d cancelled before it began", job);
             return;
         }
     if (busy_ && current_.job == job) {

@@ -36,7 +36,9 @@ def rows(out):
 
 
 # Two slaves (pids 11 and 12, tasks t40002 and t80002). Frame 1: both get it at once, the
-# second sends 30 ms after the first; frame 2: the first slave waits 20 ms for its job.
+# second sends 30 ms after the first; frame 2: the first slave waits 20 ms for its job;
+# frame 3: the second slave's first job for it is cancelled before it began, and it waits 10
+# ms for the next.
 HAND_TRACE = """\
 100.000 fc-master[10] master starts
 100.010 fc-master[10] FC_JOB 1 frame 1, 2 tile(s) to t40002
@@ -51,6 +53,15 @@ HAND_TRACE = """\
 100.051 fc-slave[12] job 4: frame 2, 1 tile(s)
 100.060 fc-slave[12] sent frame 2 of job 4
 100.070 fc-slave[11] sent frame 2 of job 3
+100.061 fc-master[10] FC_JOB 5 frame 3, 1 tile(s) to t80002
+100.061 fc-slave[12] job 5: frame 3, 1 tile(s)
+100.065 fc-slave[12] job 5 cancelled before it began
+100.071 fc-master[10] FC_JOB 7 frame 3, 2 tile(s) to t40002
+100.071 fc-slave[11] job 7: frame 3, 2 tile(s)
+100.075 fc-master[10] FC_JOB 6 frame 3, 1 tile(s) to t80002
+100.075 fc-slave[12] job 6: frame 3, 1 tile(s)
+100.080 fc-slave[12] sent frame 3 of job 6
+100.090 fc-slave[11] sent frame 3 of job 7
 garbage that is not a trace line
 """
 
@@ -62,12 +73,14 @@ def test_frame_timeline_reads_a_trace(tmp_path):
     assert done.returncode == 0, done.stderr
     table = rows(done.stdout)
     assert table == {1: [("t40002", 20, 2, False), ("t80002", 50, 1, True)],
-                     2: [("t40002", 70, 2, True), ("t80002", 60, 1, False)]}, done.stdout
-    # t40002 sent frame 1 at 20 ms and got its next job at 40 ms: one wait of 20 ms; t80002
-    # got its next job 1 ms after sending, and finished 10 ms before the last part.
-    assert re.search(r"^t40002: waited 20 ms .*: 20 ms at 20; done 0 ms", done.stdout, re.M), \
+                     2: [("t40002", 70, 2, True), ("t80002", 60, 1, False)],
+                     3: [("t40002", 90, 2, True), ("t80002", 80, 1, False)]}, done.stdout
+    # t40002 sent frame 1 at 20 ms and got its next job at 40 ms (a wait of 20 ms), then
+    # waited 1 ms at 70; t80002 waited 1 ms twice and, once its cancelled job was dropped at
+    # 65 ms, 10 ms for the next, and finished 10 ms before the last part.
+    assert re.search(r"^t40002: waited 21 ms .*: 20 ms at 20; done 0 ms", done.stdout, re.M), \
         done.stdout
-    assert re.search(r"^t80002: waited 1 ms .*: none; done 10 ms", done.stdout, re.M), \
+    assert re.search(r"^t80002: waited 12 ms .*: 10 ms at 65; done 10 ms", done.stdout, re.M), \
         done.stdout
 
 
