@@ -8,6 +8,7 @@
 #include <poll.h>
 #include <signal.h>
 #include <sys/prctl.h>
+#include <sched.h>
 #include <sys/resource.h>
 #include <sys/stat.h>
 #include <sys/statvfs.h>
@@ -396,7 +397,8 @@ void keep_freed_memory()
 }
 
 bool start_child(const std::vector<std::string> &argv, const std::string &cwd, int nice_inc,
-                 Child &child, std::string &err, const std::vector<std::pair<int, int>> &extra)
+                 Child &child, std::string &err, const std::vector<std::pair<int, int>> &extra,
+                 bool batch)
 {
     // Everything the child needs is prepared here: after fork() the child of a threaded
     // process may only make async-signal-safe calls (no allocation).
@@ -450,6 +452,12 @@ bool start_child(const std::vector<std::string> &argv, const std::string &cwd, i
             dup2(devnull, 0);
         if (nice_inc > 0)
             setpriority(PRIO_PROCESS, 0, nice_inc);
+        if (batch) {
+            // Best effort (no privilege needed): a failure leaves the usual policy.
+            struct sched_param none;
+            memset(&none, 0, sizeof none);
+            sched_setscheduler(0, SCHED_BATCH, &none);
+        }
         if (!cwd.empty() && chdir(cwd.c_str()) != 0) {
             ssize_t w = write(2, cd_failed.data(), cd_failed.size());
             (void)w;

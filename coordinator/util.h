@@ -110,13 +110,15 @@ struct Child {
 void keep_freed_memory();
 
 // Start argv[0] (absolute path) in directory cwd with stdout+stderr on a pipe. The child gets
-// its own process group and is killed (SIGKILL) if the calling thread's process dies.
-// nice_inc > 0 lowers its priority. fds maps descriptors of ours (second) to the numbers the
-// child sees them under (first, >= 3). Returns false with err if fork/pipe fails; exec
-// failure shows up as exit status 127 with a message on the pipe.
+// its own process group and is killed (SIGKILL) when the thread that started it ends
+// (PR_SET_PDEATHSIG follows the thread, not the process: start long-lived children from the
+// main thread). nice_inc > 0 lowers its priority; batch runs it under SCHED_BATCH (its
+// wake-ups do not preempt). fds maps descriptors of ours (second) to the numbers the child
+// sees them under (first, >= 3). Returns false with err if fork/pipe fails; exec failure
+// shows up as exit status 127 with a message on the pipe.
 bool start_child(const std::vector<std::string> &argv, const std::string &cwd, int nice_inc,
                  Child &child, std::string &err,
-                 const std::vector<std::pair<int, int>> &fds = {});
+                 const std::vector<std::pair<int, int>> &fds = {}, bool batch = false);
 
 // Read what is available from child.fd into lines (non-blocking); closes fd at EOF.
 // Returns false at EOF.

@@ -725,3 +725,29 @@ def test_progress_lines_and_summary(coordinator, tmp_path):
     assert any("8 frame(s) rendered" in l for l in lines)
     header = [l for l in lines if l.split()[:1] == ["host"]]
     assert header and "rays" in header[0] and "busy" in header[0]
+
+
+def test_slave_renderers_run_as_batch_tasks(coordinator, tmp_path):
+    # A slave's renderer runs under SCHED_BATCH (coordinator/renderer.cpp says why); the
+    # master's probes, which a user waits for, keep the usual policy. A renderer that records
+    # its policy and its role, then runs the real one.
+    log = tmp_path / "policies.txt"
+    script = tmp_path / "policy-povray"
+    script.write_text(f"""#!/bin/sh
+role=probe
+for a; do case $a in Frame_Control=*) role=renderer;; esac; done
+echo "$role $(chrt -p $$ | sed -n 's/.*scheduling policy: //p')" >> {log}
+exec {coordinator_renderer()} "$@"
+""")
+    script.chmod(0o755)
+    out = tmp_path / "out"
+    r = coordinator.run(["--quiet", "--povray", str(script), "--division", "frame", "--slaves",
+                         "2", SCENE] + SMALL + ["-o", str(out)], renderer=False)
+    assert r.returncode == 0, r.stderr
+    assert len(frame_files(out)) == 8, frame_files(out)
+    seen = [line.split() for line in log.read_text().splitlines()]
+    renderers = [policy for role, policy in seen if role == "renderer"]
+    probes = [policy for role, policy in seen if role == "probe"]
+    assert renderers and set(renderers) == {"SCHED_BATCH"}, seen
+    assert probes and "SCHED_BATCH" not in probes, seen
+
