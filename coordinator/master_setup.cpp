@@ -443,6 +443,10 @@ RunSummary Master::run_summary(bool ok, double elapsed) const
 
 void Master::finish(bool ok)
 {
+    std::string sync_err;
+    if (!outdir_obj_.sync_records(sync_err))
+        fprintf(stderr, "fc-master: warning: %s: a resume renders again the frames whose "
+                "records did not reach the disk\n", sync_err.c_str());
     flush_preview(true);
     if (!opt_.stats.empty() && sched_) {
         RunSummary r = run_summary(ok, start_ > 0 ? now() - start_ : 0.0);

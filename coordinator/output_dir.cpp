@@ -202,4 +202,11 @@ bool OutputDir::record(const std::string &name, uint64_t hash, std::string &err)
     return true;
 }
 
+bool OutputDir::sync_records(std::string &err)
+{
+    if (journal_fd_ < 0 || fdatasync(journal_fd_) == 0)
+        return true;
+    return sys_fail(err, "fsync " + journal_path());
+}
+
 } // namespace fc

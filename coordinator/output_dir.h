@@ -11,7 +11,8 @@
 //                 (--force starts over), so frames of two different renders never mix;
 //   RUN.frames    one line per frame written ("name w1 hash"): the hash of its stored pixels
 //                 (hash_words; "name hash", from before the thirteenth session: hash_bytes), so
-//                 a resume trusts a frame only if it decodes completely to the same pixels.
+//                 a resume trusts a frame only if it decodes completely to the same pixels;
+//                 synced at the end of the run (sync_records).
 #pragma once
 
 #include <cstdint>
@@ -50,6 +51,11 @@ public:
 
     // Record a frame that is complete under its final name, with its hash_words. False with err.
     bool record(const std::string &name, uint64_t hash, std::string &err);
+
+    // Put the records written so far on disk (at the end of a run). Each frame file is synced
+    // as it is written; its record is not, since a sync per frame costs every frame while a
+    // power cut costs only the re-render of the frames whose records it lost. False with err.
+    bool sync_records(std::string &err);
 
 private:
     bool load(std::string &err);

@@ -252,6 +252,25 @@ def test_resume_renders_damaged_frames_again(coordinator, coordinator_references
                                                out)
 
 
+def test_records_of_frames_reach_the_disk_before_the_end(coordinator, tmp_path):
+    # Resume trusts a frame by its record: the record of the last frame must be on disk when
+    # fc-master ends, not only in the page cache (each frame file is synced as it is written).
+    out = tmp_path / "out"
+    trace = tmp_path / "strace.log"
+    r = coordinator.run(small_render_args(out), prefix=[
+        "strace", "-f", "-qq", "-y", "-e", "trace=write,fsync,fdatasync", "-o", str(trace)])
+    assert r.returncode == 0, r.stderr
+    [journal] = (out / ".fc-master").glob("*.frames")
+    assert len(journal.read_text().splitlines()) == 8
+    # strace -y names each descriptor's file: "PID write(5</path/x.frames>, ...) = 30".
+    target = "<%s>" % os.path.realpath(journal)
+    calls = [line.split(None, 1)[1].split("(", 1)[0] for line in trace.read_text().splitlines()
+             if "(" in line and target in line.split(",", 1)[0]]
+    assert calls.count("write") == 8, calls
+    last_write = len(calls) - 1 - calls[::-1].index("write")
+    assert set(calls[last_write + 1:]) & {"fsync", "fdatasync"}, calls
+
+
 def fnv1a64(data):
     """64-bit FNV-1a: how fc-master hashed a frame's pixels before the thirteenth session."""
     h = 14695981039346656037
