@@ -206,7 +206,7 @@ bool OutputDir::sync_records(std::string &err)
 {
     if (journal_fd_ < 0 || fdatasync(journal_fd_) == 0)
         return true;
-    return sys_fail(err, "fsync " + journal_path());
+    return sys_fail(err, "fdatasync " + journal_path());
 }
 
 } // namespace fc
