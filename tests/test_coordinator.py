@@ -750,4 +750,3 @@ exec {coordinator_renderer()} "$@"
     probes = [policy for role, policy in seen if role == "probe"]
     assert renderers and set(renderers) == {"SCHED_BATCH"}, seen
     assert probes and "SCHED_BATCH" not in probes, seen
-
