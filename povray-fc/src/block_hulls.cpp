@@ -48,16 +48,16 @@ bool BlockHulls::Any() const {
     return false;
 }
 
-bool BlockHulls::SegmentMayMeet(const Segment &s, std::uint8_t fanNumber, const ChangeIndex &changes) const {
-    Mask mask;
-    if (fanNumber == BlockFans::kLoose) {
-        mask = InLooseBox(s) ? loose : unbounded;
-    } else {
-        mask = fan[fanNumber];
-    }
-    if (mask == 0) return false;
-    // The union test first: it rejects most segments of a wide fan at the price of one.
-    if (!changes.MayMeetUnion(s)) return false;
+std::uint32_t BlockHulls::FanSet() const {
+    std::uint32_t set = (loose ? std::uint32_t(1) << kLooseBit : 0) | (unbounded ? std::uint32_t(1) << kUnboundedBit : 0);
+    for (std::size_t f = 0; f < BlockFans::kMaxFans; ++f)
+        if (fan[f]) set |= std::uint32_t(1) << f;
+    return set;
+}
+
+bool BlockHulls::MayMeetHulls(const Segment &s, Mask mask, const ChangeIndex &changes) const {
+    // (The union test comes first, in the caller: it rejects most segments of a wide fan at
+    // the price of one.)
     if (all) return changes.MayMeet(s);
     for (; mask; mask &= mask - 1)
         if (changes.MayMeetHull(s, local[std::size_t(__builtin_ctzll(mask))])) return true;

@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstring>
+#include <limits>
 
 namespace povrayfc {
 
@@ -25,14 +26,35 @@ std::uint32_t KeyHash(double x, double y) {
     return std::uint32_t(h >> 32);
 }
 
+// Whether one of the sample's segments may meet a change. When none may, `clearance` says
+// how much farther out the box around the changes could have reached with every segment
+// tested still missing it (ChangeIndex::UnionClearance; +infinity when no segment's bundle
+// reached a change, 0 when one passed through the box and missed the hulls themselves).
 bool SampleIsDirty(const StoredSample &s, const BlockRecord &record, const ChangeIndex &changes,
-                   const BlockHulls &reach) {
-    if (s.segmentCount == StoredSample::kEverything) return true;
+                   const BlockHulls &reach, double &clearance) {
+    clearance = std::numeric_limits<double>::infinity();
     const Segment *segment = record.segments.data() + s.firstSegment;
     const std::uint8_t *fanOf = record.fanOf.data() + s.firstSegment;
-    for (std::uint32_t i = 0; i < s.segmentCount; ++i)
-        if (reach.SegmentMayMeet(segment[i], fanOf[i], changes)) return true;
+    for (std::uint32_t i = 0; i < s.segmentCount; ++i) {
+        const BlockHulls::Mask mask = reach.MaskOf(segment[i], fanOf[i]);
+        if (mask == 0) continue;
+        // The union box first (it rejects most segments of a wide fan), measuring by how much.
+        const double c = changes.UnionClearance(segment[i]);
+        if (c > 0.0) {
+            clearance = std::min(clearance, c);
+            continue;
+        }
+        clearance = 0.0;
+        if (reach.MayMeetHulls(segment[i], mask, changes)) return true;
+    }
     return false;
+}
+
+// The largest float not above `v` (>= 0): a clearance is kept rounded down.
+float FloatBelow(double v) {
+    float f = float(v);
+    if (double(f) > v) f = std::nextafter(f, 0.0f);
+    return f;
 }
 
 }  // namespace
@@ -94,13 +116,35 @@ bool BlockTracer::Begin(std::uint32_t serial, int left, int top, int right, int 
             groupReach_[g] = FindGroupHulls(old_->groupFans[g], *plan.changes, reach);
             groupReaches_[g] = groupReach_[g].Any();
         }
+        groupFanSet_.resize(old_->groupFans.size());
+        for (std::size_t g = 0; g < groupReach_.size(); ++g) groupFanSet_[g] = groupReach_[g].FanSet();
         oldDirty_.resize(n);
+        std::uint64_t tested = 0, cleared = 0;
         for (std::size_t i = 0; i < n; ++i) {
-            const StoredSample &s = old_->samples[i];
-            oldDirty_[i] = s.segmentCount == StoredSample::kEverything ||
-                           (groupReaches_[s.group] && SampleIsDirty(s, *old_, *plan.changes, groupReach_[s.group]));
-            anyDirty |= oldDirty_[i] != 0;
+            StoredSample &s = old_->samples[i];
+            bool dirty = s.segmentCount == StoredSample::kEverything;
+            if (!dirty && groupReaches_[s.group]) {
+                // Clean by what it kept, while the changes stay near where they were then and
+                // reach no bundle it did not test; else tested, keeping what it finds.
+                const std::uint32_t fans = groupFanSet_[s.group];
+                if ((fans & ~s.clearFans) == 0 && plan.drift && plan.drift->Since(s.clearStamp) < s.clearance) {
+                    ++cleared;
+                } else {
+                    ++tested;
+                    double clearance;
+                    dirty = SampleIsDirty(s, *old_, *plan.changes, groupReach_[s.group], clearance);
+                    if (!dirty && plan.changeStamp != 0 && clearance > 0.0) {
+                        s.clearStamp = plan.changeStamp;
+                        s.clearance = FloatBelow(clearance);
+                        s.clearFans = fans;
+                    }
+                }
+            }
+            oldDirty_[i] = dirty;
+            anyDirty |= dirty;
         }
+        plan.counters->testedSamples += tested;
+        plan.counters->clearedSamples += cleared;
     }
     if (!anyDirty) {
         plan.counters->reusedPixels += area;

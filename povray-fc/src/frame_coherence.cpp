@@ -177,6 +177,8 @@ void FrameCoherence::PlanFrame(const FrameSetup &setup, const SceneSignature &si
         changes_ = ChangeIndex(std::move(change.hulls), setup.gridResolution);
         plan_.changes = &changes_;
         current_.changedHulls = changes_.HullCount();
+        if (!changes_.Empty() && changes_.Bounds().IsFinite()) plan_.changeStamp = drift_.Begin(changes_.Bounds());
+        plan_.drift = &drift_;
     }
 }
 
@@ -192,6 +194,8 @@ void FrameCoherence::EndFrame(std::uint64_t raysTraced) {
         current_.reused = counters_.reusedPixels.load();
         current_.samplesTraced = counters_.tracedSamples.load();
         current_.samplesReused = counters_.reusedSamples.load();
+        current_.samplesTested = counters_.testedSamples.load();
+        current_.samplesCleared = counters_.clearedSamples.load();
         // Blocks this frame did not render missed its changes.
         if (store_) store_->ForgetUntouched();
         current_.storeBytes = store_ ? store_->MemoryBytes() : 0;

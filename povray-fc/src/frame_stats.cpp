@@ -33,7 +33,7 @@ std::string FrameStats::LogLine() const {
 
 std::string FrameStats::CsvHeader() {
     return "frame,clock,coherent,full_reason,pixels,traced,reused,changed_hulls,samples_traced,"
-           "samples_reused,rays,bookkeeping_s,store_bytes,render_s";
+           "samples_reused,rays,bookkeeping_s,store_bytes,render_s,samples_tested,samples_cleared";
 }
 
 std::string FrameStats::CsvRow() const {
@@ -41,7 +41,8 @@ std::string FrameStats::CsvRow() const {
     row.precision(17);
     row << frame << ',' << clock << ',' << (coherent ? 1 : 0) << ',' << CsvQuoted(fullReason)
         << ',' << pixels << ',' << traced << ',' << reused << ',' << changedHulls << ',' << samplesTraced << ',' << samplesReused
-        << ',' << rays << ',' << bookkeepingSeconds << ',' << storeBytes << ',' << renderSeconds;
+        << ',' << rays << ',' << bookkeepingSeconds << ',' << storeBytes << ',' << renderSeconds << ','
+        << samplesTested << ',' << samplesCleared;
     return row.str();
 }
 

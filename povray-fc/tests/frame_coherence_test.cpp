@@ -244,6 +244,28 @@ TEST_F(FrameCoherenceRun, EveryFrameEqualsTheFullRenderAndTracesLess) {
     EXPECT_LT(fcSamples, 11 * fullSamples / 3);
 }
 
+TEST_F(FrameCoherenceRun, SamplesFarFromASlowChangeAreClearedWithoutATestAndFramesStayExact) {
+    // The box creeps, then jumps across the image, then creeps again: samples its cones
+    // reach but that missed it by more than it moves keep being clean without a test
+    // (change_drift.h); after the jump they are tested again. Every frame stays exact.
+    std::uint64_t tested = 0, cleared = 0;
+    for (int f = 0; f < 16; ++f) {
+        const double x = f < 8 ? 1.0 + 0.05 * f : 9.0 + 0.05 * f;
+        const ToyScene scene = Frame(x);
+        const Image full = RenderFull(scene);
+        const FcResult fc = RenderFc(scene, f + 1);
+        ASSERT_EQ(std::memcmp(full.data(), fc.image.data(), full.size() * sizeof(float)), 0) << "frame " << f + 1;
+        const FrameStats &stats = FrameCoherence::Get().LastStats();
+        if (f == 8) {
+            EXPECT_GT(stats.samplesTested, 0u);  // the jump: tested anew
+        }
+        tested += stats.samplesTested;
+        cleared += stats.samplesCleared;
+    }
+    EXPECT_GT(tested, 0u);
+    EXPECT_GT(cleared, 0u);
+}
+
 TEST_F(FrameCoherenceRun, TheChangedPixelsAloneKeepTheFrontEndsImageExact) {
     // The front end keeps its image between frames and is sent only the pixels End() marks
     // changed: it must hold every frame's full render.

@@ -184,4 +184,58 @@ TEST(Hull, RandomSegmentsNeverMissACapsuleTheyTouch) {
     EXPECT_GT(boxOnly, touching);
 }
 
+// ClearanceWidened: the stored segment misses the box widened by the margin and the clearance
+// (checked exactly, with half the margin left for the test's own rounding), is 0 whenever
+// MeetsWidened says the segment may meet the box, and is often positive (it must be, for
+// block_tracer.cpp to skip any test).
+TEST(Hull, ClearanceIsAWideningTheSegmentStillMisses) {
+    std::mt19937_64 rng(17);
+    std::uniform_real_distribution<double> pos(-50, 50), dir(-1, 1), len(0, 80), size(0.001, 10);
+    int cleared = 0, tried = 0;
+    for (int i = 0; i < 200000; ++i) {
+        Vec3 lo{pos(rng), pos(rng), pos(rng)};
+        const Box b{lo, lo + Vec3{size(rng), size(rng), size(rng)}};
+        const Vec3 o{pos(rng), pos(rng), pos(rng)};
+        Vec3 d = (i % 2) ? 0.5 * (b.lo + b.hi) - o + 3.0 * Vec3{dir(rng), dir(rng), dir(rng)}
+                         : Vec3{dir(rng), dir(rng), dir(rng)};
+        if (i % 7 == 0) d.z = 0;
+        const double t = (i % 3 == 0) ? kInf : len(rng) / 40.0;
+        Segment s;
+        const double od[3] = {o.x, o.y, o.z}, dd[3] = {d.x, d.y, d.z};
+        if (!MakeSegment(od, dd, t, s)) continue;
+        ++tried;
+        const Vec3 centre = 0.5 * (b.lo + b.hi), e = b.Extent();
+        const double m = 4.0 * SegmentMargin(s, centre, 0.5 * std::max({e.x, e.y, e.z}));
+        const double cap = 20.0;
+        const double c = ClearanceWidened(s, b, m, cap);
+        ASSERT_GE(c, 0.0);
+        ASSERT_LE(c, cap);
+        if (MeetsWidened(s, b, m)) {
+            ASSERT_EQ(c, 0.0) << i;
+            continue;
+        }
+        if (c == 0.0) continue;
+        ++cleared;
+        const double w = 0.5 * m + c;
+        const Box widened{b.lo - Vec3{w, w, w}, b.hi + Vec3{w, w, w}};
+        const Vec3 so{s.origin[0], s.origin[1], s.origin[2]}, sd{s.direction[0], s.direction[1], s.direction[2]};
+        ASSERT_FALSE(ExactMeetsBox(so, sd, s.length, widened)) << i << " clearance " << c;
+    }
+    EXPECT_GT(cleared, tried / 3);
+}
+
+TEST(Hull, ClearanceHandPicked) {
+    const Box unit{Vec3{0, 0, 0}, Vec3{1, 1, 1}};
+    // Passing 2 above the box along x: it may widen by 2 beyond the margin.
+    const double c = ClearanceWidened(Seg({-5, 3, 0.5}, {1, 0, 0}, kInf), unit, 0.0, 10.0);
+    EXPECT_NEAR(c, 2.0, 1e-6);
+    EXPECT_EQ(ClearanceWidened(Seg({-5, 0.5, 0.5}, {1, 0, 0}, kInf), unit, 0.0, 10.0), 0.0);  // through it
+    EXPECT_EQ(ClearanceWidened(Seg({-5, 30, 0.5}, {1, 0, 0}, kInf), unit, 0.0, 10.0), 10.0);  // capped
+    // Diagonal past a corner: only a cross axis separates it.
+    const double diagonal = ClearanceWidened(Seg({2, -1, 0.5}, {1, 1, 0}, kInf), unit, 0.0, 10.0);
+    EXPECT_GT(diagonal, 0.0);
+    EXPECT_LT(diagonal, 2.0);
+}
+
 }  // namespace
+

@@ -36,8 +36,28 @@ struct BlockHulls {
     // True when some fan or the loose box may reach a change (then segments need testing).
     bool Any() const;
     // True when segment `s` of fan `fanNumber` (BlockFans::kLoose for none) may meet a change.
-    bool SegmentMayMeet(const Segment &s, std::uint8_t fanNumber, const ChangeIndex &changes) const;
+    bool SegmentMayMeet(const Segment &s, std::uint8_t fanNumber, const ChangeIndex &changes) const {
+        const Mask mask = MaskOf(s, fanNumber);
+        return mask != 0 && changes.MayMeetUnion(s) && MayMeetHulls(s, mask, changes);
+    }
+    // The candidates segment `s` of fan `fanNumber` may reach (0: none).
+    Mask MaskOf(const Segment &s, std::uint8_t fanNumber) const {
+        if (fanNumber != BlockFans::kLoose) return fan[fanNumber];
+        return InLooseBox(s) ? loose : unbounded;
+    }
+    // Its bundle as a bit of FanSet(): bit f for fan f, kLooseBit, kUnboundedBit.
+    static constexpr int kLooseBit = 16, kUnboundedBit = 17;
+    static std::uint32_t FanBit(const Segment &s, std::uint8_t fanNumber) {
+        if (fanNumber != BlockFans::kLoose) return std::uint32_t(1) << fanNumber;
+        return std::uint32_t(1) << (InLooseBox(s) ? kLooseBit : kUnboundedBit);
+    }
+    // The bundles whose mask is not 0, as FanBit()s.
+    std::uint32_t FanSet() const;
+    // True when segment `s`, whose MaskOf is `mask` (not 0), may meet one of those
+    // candidates (or any change, when `all`): the part of SegmentMayMeet after the union box.
+    bool MayMeetHulls(const Segment &s, Mask mask, const ChangeIndex &changes) const;
 };
+static_assert(BlockFans::kMaxFans <= BlockHulls::kLooseBit, "FanBit: fan numbers must fit below the loose bits");
 
 // The candidates of a block whose fans are built (BlockRecord::fans).
 BlockHulls FindBlockHulls(const BlockFans &fans, const ChangeIndex &changes);

@@ -70,6 +70,7 @@ class FrameCoherence {
 
     std::unique_ptr<SampleStore> store_;
     ChangeIndex changes_;
+    ChangeDrift drift_;  // the changes of recent frames, for the clearances samples keep
     FrameCounters counters_;
     DirtyMask tracedMask_;
     FramePlan plan_;

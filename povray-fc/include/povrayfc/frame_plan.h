@@ -6,6 +6,7 @@
 #include <atomic>
 #include <cstdint>
 
+#include "povrayfc/change_drift.h"
 #include "povrayfc/change_index.h"
 #include "povrayfc/dirty_mask.h"
 #include "povrayfc/sample_store.h"
@@ -17,9 +18,13 @@ struct FrameCounters {
     std::atomic<std::uint64_t> tracedPixels{0}, reusedPixels{0};
     std::atomic<std::uint64_t> tracedSamples{0}, reusedSamples{0};
     std::atomic<std::uint64_t> reusedBlocks{0}, replayedBlocks{0};
+    // Samples a change's cones reached: tested segment by segment, or found clean by the
+    // clearance they kept from an earlier frame (change_drift.h).
+    std::atomic<std::uint64_t> testedSamples{0}, clearedSamples{0};
 
     void Reset() {
         tracedPixels = reusedPixels = tracedSamples = reusedSamples = reusedBlocks = replayedBlocks = 0;
+        testedSamples = clearedSamples = 0;
     }
 };
 
@@ -33,6 +38,10 @@ struct FramePlan {
     Mode mode = Mode::kIdle;
     bool everythingDirty = true;       // no stored sample may be reused this frame
     const ChangeIndex *changes = nullptr;  // what changed; empty when nothing did
+    // This frame's stamp among the frames whose changes samples keep clearances from (0:
+    // none is kept or trusted this frame), and how far the changes moved since each.
+    std::uint32_t changeStamp = 0;
+    const ChangeDrift *drift = nullptr;
     SampleStore *store = nullptr;
     FrameCounters *counters = nullptr;
     DirtyMask *tracedMask = nullptr;   // pixels traced this frame, when a mask is wanted

@@ -18,6 +18,9 @@ struct FrameStats {
     std::uint64_t changedHulls = 0;    // changed regions the stored samples were tested against
     std::uint64_t samplesTraced = 0;   // camera samples traced (AA samples included)
     std::uint64_t samplesReused = 0;   // camera samples whose stored colour was reused
+    // Stored samples a change's cones reached: tested segment by segment, or found clean by
+    // the clearance kept from an earlier frame (change_drift.h).
+    std::uint64_t samplesTested = 0, samplesCleared = 0;
     std::uint64_t rays = 0;       // rays traced (POV-Ray's "Rays:" count)
     double bookkeepingSeconds = 0.0;  // change detection and statistics, outside the render threads
     std::uint64_t storeBytes = 0;     // stored samples, segments and pixels

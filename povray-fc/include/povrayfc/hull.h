@@ -86,6 +86,39 @@ inline bool MeetsWidened(const Segment &s, const Box &box, double m) {
     return true;
 }
 
+// How much more than `m` the finite box may be widened with the segment still provably
+// missing it: a lower bound on the largest such widening, capped at `cap`; 0 when
+// MeetsWidened(s, box, m) may be true (or for a NaN). The same separating axes as
+// MeetsWidened, each giving the widening up to which it still separates; the reach that
+// bounds an unbounded ray counts the cap. (A sample found far from this frame's changes
+// is not tested again while they move less than this: block_tracer.cpp.)
+inline double ClearanceWidened(const Segment &s, const Box &box, double m, double cap) {
+    const double ox = s.origin[0], oy = s.origin[1], oz = s.origin[2];
+    const double dx = s.direction[0], dy = s.direction[1], dz = s.direction[2];
+    const double cx = 0.5 * (box.lo.x + box.hi.x), cy = 0.5 * (box.lo.y + box.hi.y), cz = 0.5 * (box.lo.z + box.hi.z);
+    const double ex = 0.5 * (box.hi.x - box.lo.x) + m, ey = 0.5 * (box.hi.y - box.lo.y) + m,
+                 ez = 0.5 * (box.hi.z - box.lo.z) + m;
+    const double ocx = ox - cx, ocy = oy - cy, ocz = oz - cz;
+    const double k = std::max(std::fabs(dx), std::max(std::fabs(dy), std::fabs(dz)));
+    const double reach = std::fabs(ocx) + std::fabs(ocy) + std::fabs(ocz) + ex + ey + ez + 3.0 * cap;
+    const double half = 0.5 * std::min(double(s.length) * k, reach);
+    const double hx = half * dx, hy = half * dy, hz = half * dz;
+    const double mx = k * ocx + hx, my = k * ocy + hy, mz = k * ocz + hz;
+    const double ahx = std::fabs(hx), ahy = std::fabs(hy), ahz = std::fabs(hz);
+    if (std::isnan(mx + my + mz)) return 0.0;  // std::max below would drop a NaN
+    // The box's own axes: |m_a| > k (e_a + w) + |h_a| for every w below (|m_a| - k e_a - |h_a|) / k.
+    double w = std::max(std::fabs(mx) - k * ex - ahx,
+                        std::max(std::fabs(my) - k * ey - ahy, std::fabs(mz) - k * ez - ahz)) / k;
+    // Separated by its own axes (most segments far from a change are): that bound will do.
+    if (w > 0.0) return std::min(w, cap);
+    // The cross axes: |my hz - mz hy| > k (ey + w) |hz| + k (ez + w) |hy|, and so on.
+    const double sx = ahz + ahy, sy = ahz + ahx, sz = ahy + ahx;
+    if (sx > 0) w = std::max(w, (std::fabs(my * hz - mz * hy) - k * (ey * ahz + ez * ahy)) / (k * sx));
+    if (sy > 0) w = std::max(w, (std::fabs(mz * hx - mx * hz) - k * (ex * ahz + ez * ahx)) / (k * sy));
+    if (sz > 0) w = std::max(w, (std::fabs(mx * hy - my * hx) - k * (ex * ahy + ey * ahx)) / (k * sz));
+    return w > 0.0 ? std::min(w, cap) : 0.0;  // a NaN gives 0
+}
+
 // True when the ray a segment stands for may pass through the hull (box, then capsule).
 bool MayMeet(const Segment &s, const Hull &hull);
 

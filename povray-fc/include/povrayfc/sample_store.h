@@ -40,8 +40,16 @@ struct StoredSample {
     // a block's samples against a frame's changes reads it for every sample. It fills what
     // was padding.
     std::uint32_t group = 0;
+    // Found clean in the frame stamped clearStamp (0: never, or traced since) with every
+    // segment of the bundles in clearFans (bit f: fan f; 16: loose of finite length, 17:
+    // loose without an end) missing that frame's changes by `clearance` beyond their
+    // margin (change_drift.h): while the changes move less and reach no other bundle,
+    // the sample stays clean without a test.
+    std::uint32_t clearStamp = 0;
+    float clearance = 0.0f;
+    std::uint32_t clearFans = 0;
 };
-static_assert(sizeof(StoredSample) == 48, "StoredSample grew: the store's size per pixel counts it");
+static_assert(sizeof(StoredSample) == 64, "StoredSample grew: the store's size per pixel counts it");
 
 struct BlockRecord {
     int left = 0, top = 0, right = -1, bottom = -1;  // inclusive
