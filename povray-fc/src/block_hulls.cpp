@@ -48,10 +48,10 @@ bool BlockHulls::Any() const {
     return false;
 }
 
-std::uint32_t BlockHulls::FanSet() const {
-    std::uint32_t set = (loose ? std::uint32_t(1) << kLooseBit : 0) | (unbounded ? std::uint32_t(1) << kUnboundedBit : 0);
+std::uint32_t BlockHulls::ReachedClasses() const {
+    std::uint32_t set = (loose ? std::uint32_t(1) << 7 : 0) | (unbounded ? std::uint32_t(1) << 8 : 0);
     for (std::size_t f = 0; f < BlockFans::kMaxFans; ++f)
-        if (fan[f]) set |= std::uint32_t(1) << f;
+        if (fan[f]) set |= std::uint32_t(1) << std::min<std::size_t>(f, 6);
     return set;
 }
 

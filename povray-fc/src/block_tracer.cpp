@@ -29,15 +29,20 @@ std::uint32_t KeyHash(double x, double y) {
 // Whether one of the sample's segments may meet a change. When none may, `clearance` says
 // how much farther out the box around the changes could have reached with every segment
 // tested still missing it (ChangeIndex::UnionClearance; +infinity when no segment's bundle
-// reached a change, 0 when one passed through the box and missed the hulls themselves).
+// reached a change, 0 when one passed through the box and missed the hulls themselves),
+// and `untested` the bundle classes (BlockHulls::ClassBit) of the segments not tested.
 bool SampleIsDirty(const StoredSample &s, const BlockRecord &record, const ChangeIndex &changes,
-                   const BlockHulls &reach, double &clearance) {
+                   const BlockHulls &reach, double &clearance, std::uint32_t &untested) {
     clearance = std::numeric_limits<double>::infinity();
+    untested = 0;
     const Segment *segment = record.segments.data() + s.firstSegment;
     const std::uint8_t *fanOf = record.fanOf.data() + s.firstSegment;
     for (std::uint32_t i = 0; i < s.segmentCount; ++i) {
         const BlockHulls::Mask mask = reach.MaskOf(segment[i], fanOf[i]);
-        if (mask == 0) continue;
+        if (mask == 0) {
+            untested |= BlockHulls::ClassBit(segment[i], fanOf[i]);
+            continue;
+        }
         // The union box first (it rejects most segments of a wide fan), measuring by how much.
         const double c = changes.UnionClearance(segment[i]);
         if (c > 0.0) {
@@ -50,10 +55,22 @@ bool SampleIsDirty(const StoredSample &s, const BlockRecord &record, const Chang
     return false;
 }
 
-// The largest float not above `v` (>= 0): a clearance is kept rounded down.
-float FloatBelow(double v) {
-    float f = float(v);
-    if (double(f) > v) f = std::nextafter(f, 0.0f);
+// A clearance (>= 0, rounded down to a float whose low mantissa bits are cleared) and the
+// bundle classes it holds for, in one word (StoredSample::clearance).
+constexpr std::uint32_t kClassMask = (std::uint32_t(1) << BlockHulls::kClassBits) - 1;
+
+std::uint32_t PackClearance(double clearance, std::uint32_t classes) {
+    float f = float(clearance);
+    if (double(f) > clearance) f = std::nextafter(f, 0.0f);
+    std::uint32_t bits;
+    std::memcpy(&bits, &f, sizeof bits);
+    return (bits & ~kClassMask) | (classes & kClassMask);  // a positive float only shrinks so
+}
+
+float ClearanceOf(std::uint32_t packed) {
+    const std::uint32_t bits = packed & ~kClassMask;
+    float f;
+    std::memcpy(&f, &bits, sizeof f);
     return f;
 }
 
@@ -116,8 +133,8 @@ bool BlockTracer::Begin(std::uint32_t serial, int left, int top, int right, int 
             groupReach_[g] = FindGroupHulls(old_->groupFans[g], *plan.changes, reach);
             groupReaches_[g] = groupReach_[g].Any();
         }
-        groupFanSet_.resize(old_->groupFans.size());
-        for (std::size_t g = 0; g < groupReach_.size(); ++g) groupFanSet_[g] = groupReach_[g].FanSet();
+        groupClasses_.resize(old_->groupFans.size());
+        for (std::size_t g = 0; g < groupReach_.size(); ++g) groupClasses_[g] = groupReach_[g].ReachedClasses();
         oldDirty_.resize(n);
         std::uint64_t tested = 0, cleared = 0;
         for (std::size_t i = 0; i < n; ++i) {
@@ -125,18 +142,19 @@ bool BlockTracer::Begin(std::uint32_t serial, int left, int top, int right, int 
             bool dirty = s.segmentCount == StoredSample::kEverything;
             if (!dirty && groupReaches_[s.group]) {
                 // Clean by what it kept, while the changes stay near where they were then and
-                // reach no bundle it did not test; else tested, keeping what it finds.
-                const std::uint32_t fans = groupFanSet_[s.group];
-                if ((fans & ~s.clearFans) == 0 && plan.drift && plan.drift->Since(s.clearStamp) < s.clearance) {
+                // reach no class of its segments it did not test; else tested, keeping what
+                // it finds.
+                if ((groupClasses_[s.group] & ~s.clearance & kClassMask) == 0 && plan.drift &&
+                    plan.drift->Since(s.clearStamp) < ClearanceOf(s.clearance)) {
                     ++cleared;
                 } else {
                     ++tested;
                     double clearance;
-                    dirty = SampleIsDirty(s, *old_, *plan.changes, groupReach_[s.group], clearance);
+                    std::uint32_t untested;
+                    dirty = SampleIsDirty(s, *old_, *plan.changes, groupReach_[s.group], clearance, untested);
                     if (!dirty && plan.changeStamp != 0 && clearance > 0.0) {
                         s.clearStamp = plan.changeStamp;
-                        s.clearance = FloatBelow(clearance);
-                        s.clearFans = fans;
+                        s.clearance = PackClearance(clearance, ~untested);
                     }
                 }
             }

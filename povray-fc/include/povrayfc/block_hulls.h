@@ -3,6 +3,7 @@
 #ifndef POVRAYFC_BLOCK_HULLS_H
 #define POVRAYFC_BLOCK_HULLS_H
 
+#include <algorithm>
 #include <cstddef>
 #include <cstdint>
 
@@ -45,19 +46,21 @@ struct BlockHulls {
         if (fanNumber != BlockFans::kLoose) return fan[fanNumber];
         return InLooseBox(s) ? loose : unbounded;
     }
-    // Its bundle as a bit of FanSet(): bit f for fan f, kLooseBit, kUnboundedBit.
-    static constexpr int kLooseBit = 16, kUnboundedBit = 17;
-    static std::uint32_t FanBit(const Segment &s, std::uint8_t fanNumber) {
-        if (fanNumber != BlockFans::kLoose) return std::uint32_t(1) << fanNumber;
-        return std::uint32_t(1) << (InLooseBox(s) ? kLooseBit : kUnboundedBit);
+    // A segment's bundle class, one of kClassBits bits: fans 0-5 each, the fans from 6 on
+    // together, the loose segments of finite length, those without an end (a stored
+    // sample keeps which classes it tested in as few bits: sample_store.h).
+    static constexpr std::uint32_t kClassBits = 9;
+    static std::uint32_t ClassBit(const Segment &s, std::uint8_t fanNumber) {
+        if (fanNumber != BlockFans::kLoose) return std::uint32_t(1) << std::min<unsigned>(fanNumber, 6);
+        return std::uint32_t(1) << (InLooseBox(s) ? 7 : 8);
     }
-    // The bundles whose mask is not 0, as FanBit()s.
-    std::uint32_t FanSet() const;
+    // The classes of the bundles whose mask is not 0.
+    std::uint32_t ReachedClasses() const;
     // True when segment `s`, whose MaskOf is `mask` (not 0), may meet one of those
     // candidates (or any change, when `all`): the part of SegmentMayMeet after the union box.
     bool MayMeetHulls(const Segment &s, Mask mask, const ChangeIndex &changes) const;
 };
-static_assert(BlockFans::kMaxFans <= BlockHulls::kLooseBit, "FanBit: fan numbers must fit below the loose bits");
+
 
 // The candidates of a block whose fans are built (BlockRecord::fans).
 BlockHulls FindBlockHulls(const BlockFans &fans, const ChangeIndex &changes);

@@ -104,7 +104,7 @@ class BlockTracer {
     std::vector<std::uint32_t> tracedIndices_; // UpdateInPlace: the traced samples with segments
     std::vector<BlockHulls> groupReach_;       // per group of old_: the changes it may reach
     std::vector<std::uint8_t> groupReaches_;   // per group of old_: groupReach_[g].Any()
-    std::vector<std::uint32_t> groupFanSet_;   // per group of old_: groupReach_[g].FanSet()
+    std::vector<std::uint32_t> groupClasses_;  // per group of old_: groupReach_[g].ReachedClasses()
     std::vector<std::uint8_t> tracedPixels_; // per pixel of the block
     std::uint64_t tracedSamples_ = 0, reusedSamples_ = 0;
     int changed_[4] = {0, 0, -1, -1};       // left, top, right, bottom of the changed pixels

@@ -40,16 +40,16 @@ struct StoredSample {
     // a block's samples against a frame's changes reads it for every sample. It fills what
     // was padding.
     std::uint32_t group = 0;
-    // Found clean in the frame stamped clearStamp (0: never, or traced since) with every
-    // segment of the bundles in clearFans (bit f: fan f; 16: loose of finite length, 17:
-    // loose without an end) missing that frame's changes by `clearance` beyond their
-    // margin (change_drift.h): while the changes move less and reach no other bundle,
-    // the sample stays clean without a test.
+    // Found clean in the frame stamped clearStamp (0: never, or traced since): its segments
+    // of the bundle classes in the low BlockHulls::kClassBits bits of `clearance` (every
+    // one of its segments in such a class was tested) missed that frame's changes by the
+    // float in the other bits beyond their margin (its low mantissa bits cleared: rounded
+    // down). While the changes move less than that and reach no other class, the sample
+    // stays clean without a test (change_drift.h, block_tracer.cpp).
     std::uint32_t clearStamp = 0;
-    float clearance = 0.0f;
-    std::uint32_t clearFans = 0;
+    std::uint32_t clearance = 0;
 };
-static_assert(sizeof(StoredSample) == 64, "StoredSample grew: the store's size per pixel counts it");
+static_assert(sizeof(StoredSample) == 56, "StoredSample grew: the store's size per pixel counts it");
 
 struct BlockRecord {
     int left = 0, top = 0, right = -1, bottom = -1;  // inclusive
