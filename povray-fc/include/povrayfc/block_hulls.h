@@ -61,7 +61,6 @@ struct BlockHulls {
     bool MayMeetHulls(const Segment &s, Mask mask, const ChangeIndex &changes) const;
 };
 
-
 // The candidates of a block whose fans are built (BlockRecord::fans).
 BlockHulls FindBlockHulls(const BlockFans &fans, const ChangeIndex &changes);
 // The candidates of one group of the block's samples (BlockRecord::groupFans), among

@@ -44,11 +44,10 @@ class ChangeIndex {
     bool MayMeetUnion(const Segment &s) const;
     // 0 when the segment may meet the box around all changed hulls (as MayMeetUnion, or a
     // hair wider); else how much farther out than its margin that box could reach with the
-    // segment still missing it (at most ClearanceCap()). See ChangeDrift: the margin counted
+    // segment still missing it (at most twice the box's half extent). See ChangeDrift: the margin counted
     // here is twice MayMeetUnion's, so that the rounding of this test and of the next
     // frame's is covered too.
     double UnionClearance(const Segment &s) const;
-    double ClearanceCap() const { return clearanceCap_; }
     // True when it may meet changed hull i (MayMeet(s, Hulls()[i]), prepared once).
     bool MayMeetHull(const Segment &s, std::size_t i) const { return povrayfc::MayMeet(s, hulls_[i], tests_[i]); }
 
