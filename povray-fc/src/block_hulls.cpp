@@ -49,9 +49,9 @@ bool BlockHulls::Any() const {
 }
 
 std::uint32_t BlockHulls::ReachedClasses() const {
-    std::uint32_t set = (loose ? std::uint32_t(1) << 7 : 0) | (unbounded ? std::uint32_t(1) << 8 : 0);
+    std::uint32_t set = (loose ? kLooseClass : 0) | (unbounded ? kUnboundedClass : 0);
     for (std::size_t f = 0; f < BlockFans::kMaxFans; ++f)
-        if (fan[f]) set |= std::uint32_t(1) << std::min<std::size_t>(f, 6);
+        if (fan[f]) set |= FanClass(f);
     return set;
 }
 

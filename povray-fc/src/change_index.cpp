@@ -30,7 +30,6 @@ ChangeIndex::ChangeIndex(std::vector<Hull> hulls, int gridResolution) {
     if (!hulls_.empty() && bounds_.IsFinite()) {
         boundsCentre_ = Centre(bounds_);
         boundsHalfExtent_ = HalfExtent(bounds_);
-        clearanceCap_ = 2.0 * boundsHalfExtent_ + 1e-30;
     }
     if (hulls_.size() <= kDirectHulls || !bounds_.IsFinite()) return;
 
@@ -77,15 +76,12 @@ bool ChangeIndex::MayMeet(const Segment &s) const {
     return false;
 }
 
-bool ChangeIndex::MayMeetUnion(const Segment &s) const {
-    if (hulls_.empty()) return false;
-    if (!boundsFinite_) return true;
-    return MeetsWidened(s, bounds_, 2.0 * SegmentMargin(s, boundsCentre_, boundsHalfExtent_));
-}
-
 double ChangeIndex::UnionClearance(const Segment &s) const {
     if (hulls_.empty() || !boundsFinite_) return 0.0;
-    return ClearanceWidened(s, bounds_, 4.0 * SegmentMargin(s, boundsCentre_, boundsHalfExtent_), clearanceCap_);
+    // The largest clearance worth knowing: a change that moves farther than its own size
+    // from one frame to a later one is tested again anyway.
+    const double cap = 2.0 * boundsHalfExtent_ + 1e-30;
+    return ClearanceWidened(s, bounds_, 4.0 * SegmentMargin(s, boundsCentre_, boundsHalfExtent_), cap);
 }
 
 bool ChangeIndex::MayMeetThroughGrid(const Segment &s) const {

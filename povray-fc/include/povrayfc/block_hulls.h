@@ -36,10 +36,12 @@ struct BlockHulls {
 
     // True when some fan or the loose box may reach a change (then segments need testing).
     bool Any() const;
-    // True when segment `s` of fan `fanNumber` (BlockFans::kLoose for none) may meet a change.
+    // True when segment `s` of fan `fanNumber` (BlockFans::kLoose for none) may meet a change:
+    // its candidates, then the box around all changes, then the candidates' hulls (as
+    // block_tracer.cpp tests a stored sample's segments).
     bool SegmentMayMeet(const Segment &s, std::uint8_t fanNumber, const ChangeIndex &changes) const {
         const Mask mask = MaskOf(s, fanNumber);
-        return mask != 0 && changes.MayMeetUnion(s) && MayMeetHulls(s, mask, changes);
+        return mask != 0 && changes.UnionClearance(s) == 0.0 && MayMeetHulls(s, mask, changes);
     }
     // The candidates segment `s` of fan `fanNumber` may reach (0: none).
     Mask MaskOf(const Segment &s, std::uint8_t fanNumber) const {
@@ -50,9 +52,11 @@ struct BlockHulls {
     // together, the loose segments of finite length, those without an end (a stored
     // sample keeps which classes it tested in as few bits: sample_store.h).
     static constexpr std::uint32_t kClassBits = 9;
+    static constexpr std::uint32_t kLooseClass = std::uint32_t(1) << 7, kUnboundedClass = std::uint32_t(1) << 8;
+    static std::uint32_t FanClass(std::size_t fanNumber) { return std::uint32_t(1) << std::min<std::size_t>(fanNumber, 6); }
     static std::uint32_t ClassBit(const Segment &s, std::uint8_t fanNumber) {
-        if (fanNumber != BlockFans::kLoose) return std::uint32_t(1) << std::min<unsigned>(fanNumber, 6);
-        return std::uint32_t(1) << (InLooseBox(s) ? 7 : 8);
+        if (fanNumber != BlockFans::kLoose) return FanClass(fanNumber);
+        return InLooseBox(s) ? kLooseClass : kUnboundedClass;
     }
     // The classes of the bundles whose mask is not 0.
     std::uint32_t ReachedClasses() const;

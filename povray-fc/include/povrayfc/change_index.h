@@ -40,13 +40,11 @@ class ChangeIndex {
 
     // True when the ray the segment stands for may meet a changed hull.
     bool MayMeet(const Segment &s) const;
-    // True when it may meet the box around all changed hulls (a cheap first test).
-    bool MayMeetUnion(const Segment &s) const;
-    // 0 when the segment may meet the box around all changed hulls (as MayMeetUnion, or a
-    // hair wider); else how much farther out than its margin that box could reach with the
-    // segment still missing it (at most twice the box's half extent). See ChangeDrift: the margin counted
-    // here is twice MayMeetUnion's, so that the rounding of this test and of the next
-    // frame's is covered too.
+    // The cheap first test, against the box around all changed hulls: 0 when the segment
+    // may meet it; else how much farther out than the segment's margin that box could reach
+    // with the segment still missing it (at most twice the box's half extent). The margin is
+    // twice the one a hull inside the box needs (MayMeet's), so that the rounding of this
+    // test and of a later frame's is covered too (change_drift.h).
     double UnionClearance(const Segment &s) const;
     // True when it may meet changed hull i (MayMeet(s, Hulls()[i]), prepared once).
     bool MayMeetHull(const Segment &s, std::size_t i) const { return povrayfc::MayMeet(s, hulls_[i], tests_[i]); }
@@ -61,9 +59,6 @@ class ChangeIndex {
     // Its centre and half extent (max norm), for every segment's margin: worked out once.
     Vec3 boundsCentre_{0.0, 0.0, 0.0};
     double boundsHalfExtent_ = 0.0;
-    // The largest clearance worth knowing: a change that moves farther than its own size
-    // from one frame to a later one is tested again anyway.
-    double clearanceCap_ = 0.0;
     std::unique_ptr<VoxelGrid> grid_;
     double gridSlack_ = 0.0;               // hulls are binned widened by this much
     std::vector<std::uint32_t> cellStart_;  // CSR: hulls of voxel v are
