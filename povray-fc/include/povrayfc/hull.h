@@ -37,20 +37,6 @@ inline double SegmentMargin(const Segment &s, const Vec3 &c, double h) {
     return 0x1p-19 * (o + oc + h) + 1e-30;
 }
 
-// Cheap rejection before a slab test: true when the segment lies entirely beyond one
-// face of `box` widened by `margin` (both of its ends past it, an unbounded ray moving
-// away or parallel). No division.
-inline bool BeyondOneFace(const Segment &s, const Box &box, double margin) {
-    const double length = s.length;
-    for (int a = 0; a < 3; ++a) {
-        const double o = s.origin[a], d = s.direction[a];
-        const double e = d == 0.0 ? o : o + length * d;  // +-inf for an unbounded ray
-        const double lo = box.lo[a] - margin, hi = box.hi[a] + margin;
-        if ((o < lo && e < lo) || (o > hi && e > hi)) return true;
-    }
-    return false;
-}
-
 // True when the ray a segment stands for may pass through the closed box (a slab test
 // against the box widened by SegmentMargin). Never false for a ray that touches it.
 bool MayMeet(const Segment &s, const Box &box);
