@@ -360,6 +360,36 @@ def test_frames_complete_in_order_while_rendering(coordinator, coordinator_refer
         assert finished[k] <= finished[k + lag], finished
 
 
+def test_private_pvmd_and_its_tasks_get_at_most_fd_setsize_descriptors(coordinator,
+                                                                         coordinator_references,
+                                                                         tmp_path):
+    """The pvmd closes every descriptor up to the soft limit in each task it spawns (about
+    0.2 s a slave under the 1,048,576 many containers set), and PVM's select() cannot use one
+    past FD_SETSIZE: fc-master's private pvmd, so its slaves and their renderers, get 1024."""
+    import resource
+    hard = resource.getrlimit(resource.RLIMIT_NOFILE)[1]
+    high = 8192 if hard == resource.RLIM_INFINITY else min(8192, hard)
+    if high <= 1024:
+        pytest.skip(f"the hard limit on open files ({hard}) leaves nothing above 1024 to lower")
+    out = tmp_path / "out"
+    log = tmp_path / "limits.log"
+    script = tmp_path / "limit-logging-povray"
+    script.write_text(f"""#!/bin/sh
+case "$*" in *Frame_Control=*) ulimit -Sn >> {log} ;; esac
+exec {coordinator_renderer()} "$@"
+""")
+    script.chmod(0o755)
+    r = coordinator.run(["--no-fc", "--quiet", "--povray", str(script), "--division", "frame",
+                         "--slaves", "2", SCENE] + SMALL + ["-o", str(out)], renderer=False,
+                        prefix=("sh", "-c", f'ulimit -Sn {high} && exec "$@"', "sh"))
+    assert r.returncode == 0, r.stderr
+    limits = log.read_text().split()
+    # Invariant: every renderer a slave started (so the slave and the pvmd) had the lowered
+    # limit, not the master's.
+    assert len(limits) >= 2 and all(int(n) == 1024 for n in limits), limits
+    assert_same_frames(out, coordinator_references.frames(SCENE, SMALL))
+
+
 def renderer_wrapper(tmp_path, failures):
     """A renderer that fails (exit status 3, as a broken host would) the first `failures`
     renders fc-slave starts, then runs povray-fc; failures < 0: always."""
