@@ -10,7 +10,7 @@ PACKAGES="dpkg-dev quilt ccache autoconf-archive build-essential
     python3-pytest python3-numpy python3-matplotlib
     cmake libgtest-dev
     povray povray-examples
-    openssh-server openssh-client iproute2 procps psmisc strace"
+    openssh-server openssh-client iproute2 procps psmisc strace linux-perf"
 # A few of POV-Ray's build dependencies, enough to tell whether build-dep has run.
 BUILD_DEP_MARKERS="libboost-thread-dev libopenexr-dev libsdl1.2-compat-dev libtiff-dev libxpm-dev"
 
