@@ -6,6 +6,7 @@ POV-Ray process rendering the same frames. The `coordinator` fixture kills, by p
 a test leaves behind; tests also assert that nothing was left.
 """
 import os
+import resource
 import signal
 import subprocess
 import time
@@ -366,7 +367,6 @@ def test_private_pvmd_and_its_tasks_get_at_most_fd_setsize_descriptors(coordinat
     """The pvmd closes every descriptor up to the soft limit in each task it spawns (about
     0.2 s a slave under the 1,048,576 many containers set), and PVM's select() cannot use one
     past FD_SETSIZE: fc-master's private pvmd, so its slaves and their renderers, get 1024."""
-    import resource
     hard = resource.getrlimit(resource.RLIMIT_NOFILE)[1]
     high = 8192 if hard == resource.RLIM_INFINITY else min(8192, hard)
     if high <= 1024:
