@@ -58,6 +58,22 @@ class Recording:
         self.proc = None
 
 
+def account_during(path, run):
+    """run() while a Recording at path records: (what run returned, account(path)); the
+    recording is removed either way."""
+    path = Path(path)
+    recording = Recording(path)
+    recording.start()
+    try:
+        result = run()
+    finally:
+        recording.stop()
+    try:
+        return result, account(path)
+    finally:
+        path.unlink(missing_ok=True)
+
+
 def account(path):
     """{"window": ms, "busy": {cpu: ms}, "idle": {cpu: ms}, "commands": {(cpu, command): ms}}
     of fc-master's lifetime in the recording at path (a command is a process's name: every
