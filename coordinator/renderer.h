@@ -7,7 +7,7 @@
 // to job. A job for an earlier frame needs a fresh process. Rectangles the last frame did not
 // cover need none: fc forgets the blocks a frame left out (they missed its changes) and
 // traces them in full when they come back. The console output is kept only to explain
-// failures.
+// failures, so it does not wake the slave unless the scene fills it quickly.
 #pragma once
 
 #include <sys/types.h>
@@ -63,7 +63,8 @@ public:
     // Ask the waiting process to render frame over rects (can_take must hold).
     bool submit(int frame, const std::vector<Rect> &rects, std::string &err);
 
-    // File descriptors to poll for input (console, channel).
+    // File descriptors to poll for input: the channel, and the console while it is chatty
+    // (pump reads it whatever woke the caller).
     void poll_fds(std::vector<int> &fds) const;
 
     // Read what arrived. Finished frames are appended to done (the process is Waiting again);
@@ -93,6 +94,8 @@ private:
     bool rendered_any_ = false;
     bool fresh_frame_ = false;
     std::deque<std::string> tail_;      // last console lines
+    bool console_polled_ = false;       // the console wakes the slave (renderer.cpp says when)
+    size_t console_bytes_ = 0;          // console bytes read since the last frame record
 };
 
 } // namespace fc

@@ -14,8 +14,8 @@ import time
 import numpy as np
 import pytest
 
-from conftest import (COORDINATOR_SCENES, TOP, coordinator_cmdline, coordinator_renderer,
-                      coordinator_stats, frame_files, load_rgb)
+from conftest import (COORDINATOR_SCENES, FC_SLAVE, TOP, coordinator_cmdline,
+                      coordinator_renderer, coordinator_stats, frame_files, load_rgb)
 
 pytestmark = pytest.mark.usefixtures("coordinator_build")
 
@@ -388,6 +388,47 @@ exec {coordinator_renderer()} "$@"
     # limit, not the master's.
     assert len(limits) >= 2 and all(int(n) == 1024 for n in limits), limits
     assert_same_frames(out, coordinator_references.frames(SCENE, SMALL))
+
+
+def test_renderer_console_does_not_wake_the_slave(coordinator, coordinator_references,
+                                                  tmp_path):
+    """POV-Ray writes its status lines to the console in about nine writes a frame, and the
+    console only explains failures: the slave reads it when the frame record wakes it, so a
+    frame wakes the slave about twice (the record, the next job), not 4-5 times."""
+    frames = 24
+    opts = ["+W160", "+H120", "+KFI1", "+KFF%d" % frames]
+    out = tmp_path / "out"
+    polls = tmp_path / "slave-polls"
+    wrapper = tmp_path / "traced-slave"
+    wrapper.write_text(f'#!/bin/sh\nexec strace -qq -o {polls} -e trace=poll {FC_SLAVE} "$@"\n')
+    wrapper.chmod(0o755)
+    r = coordinator.run(["--quiet", "--slave", str(wrapper), "--division", "frame", "--slaves",
+                         "1", SCENE] + opts + ["-o", str(out)])
+    assert r.returncode == 0, r.stderr
+    assert_same_frames(out, coordinator_references.frames(SCENE, opts))
+    woken = sum(1 for line in polls.read_text().splitlines() if line.startswith("poll("))
+    # Invariant: fewer than three wake-ups a frame (the old slave, woken by every console
+    # write, polled 104 times for these 24 frames, the new one 47).
+    assert 0 < woken < 3 * frames, woken
+
+
+def test_chatty_scene_fills_the_console_and_still_renders(coordinator, coordinator_references,
+                                                          tmp_path):
+    """A scene that, from its third frame on, writes more to the console in a frame (#debug,
+    75 KB) than its pipe holds: the slave, which stopped polling the quiet console after the
+    first frame, reads it when its poll times out and polls it from then on; the renderer is
+    never left blocked on a full pipe."""
+    scene = tmp_path / "chatty.pov"
+    line = "x" * 49
+    with open(os.path.join(COORDINATOR_SCENES, SCENE)) as f:
+        scene.write_text(f.read() + '#if (frame_number >= 3) #for (I, 1, 1500) #debug "%s\\n" '
+                         '#end #end\n' % line)
+    out = tmp_path / "out"
+    r = coordinator.run(["--quiet", "--division", "frame", "--slaves", "2", str(scene)] + SMALL +
+                        ["-o", str(out)])
+    assert r.returncode == 0, r.stderr
+    assert_same_frames(out, coordinator_references.frames(str(scene), SMALL))
+    assert coordinator.wait_no_processes() == []
 
 
 def renderer_wrapper(tmp_path, failures):
