@@ -104,8 +104,8 @@ def account(path):
 
 def median_report(runs, least_ms=1.0):
     """One line per processor: the median over runs of its busy and idle time and of each
-    command's time (a command missing from a run counts 0 there); commands under least_ms
-    left out."""
+    command's time (a command missing from a run counts 0 there; commands under least_ms
+    left out); then the median of the window the run would take with no idle at all."""
     cpus = sorted({cpu for r in runs for cpu in r["busy"]})
     keys = sorted({k for r in runs for k in r["commands"]})
     lines = []
@@ -122,4 +122,8 @@ def median_report(runs, least_ms=1.0):
         parts.sort(reverse=True)
         lines.append(f"processor {cpu}: busy {busy:.0f} ms, idle {idle:.0f} ms: " +
                      ", ".join(f"{name} {ms:.0f}" for ms, name in parts))
+    # The work alone bounds the run: with no processor ever idle it would still take the
+    # busy time shared out (what (9) can reach without less work; README, Newton section).
+    floor = statistics.median(sum(r["busy"].values()) / len(cpus) for r in runs)
+    lines.append(f"no idle at all: {floor:.0f} ms (all processors' busy time over {len(cpus)})")
     return lines

@@ -71,3 +71,12 @@ def test_cpu_accounting_names_each_program_on_each_processor(tmp_path):
         # The renderers, the slaves and the master all ran, and took time.
         assert {"povray-fc", "fc-slave", "fc-master"} <= programs, done.stdout
         assert busy_total > 0
+        floor = re.search(rf"^\(8\) {side}: CPU per run.*\n(?:  processor .*\n)+  no idle at all: "
+                          rf"(\d+) ms \(all processors' busy time over (\d+)\)$", done.stdout, re.M)
+        assert floor, done.stdout
+        # Invariant: the work shared out over the processors (the median of two runs is their
+        # mean, as is each processor's: equal up to the printed rounding) fits in the window.
+        cpus = int(floor.group(2))
+        assert cpus == len(lines[0].splitlines())
+        assert abs(int(floor.group(1)) - busy_total / cpus) <= 1, done.stdout
+        assert int(floor.group(1)) <= int(head.group(1)) * 1.1 + 2, done.stdout
