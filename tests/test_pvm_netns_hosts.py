@@ -53,6 +53,13 @@ class Cluster:
                            timeout=30)
         return r.stdout.strip() if r.returncode == 0 else None
 
+    def open_files(self, host):
+        """The soft limit on open files of a session on host (ulimit -Sn), as text."""
+        r = subprocess.run([self.rsh, host, "ulimit -Sn"], capture_output=True, text=True,
+                           timeout=30)
+        assert r.returncode == 0, r.stderr
+        return r.stdout.strip()
+
     def assert_up(self):
         for h in self.hosts:
             assert self.answers(h) == h, f"{h} of {self.state} does not answer"
@@ -205,6 +212,11 @@ def test_full_host_gets_a_processor_of_its_own_half_hosts_share_one(states):
             for h in cluster.hosts]
     assert all(c.isdigit() for c in cpus), cpus
     assert cpus[1] == cpus[2] != cpus[0]
+    # Invariant: a host allows what a stock Debian host does, 1024 open files (or fewer),
+    # whatever this machine allows: the pvmd closes that many descriptors per task it spawns.
+    for h in cluster.hosts:
+        limit = cluster.open_files(h)
+        assert limit.isdigit() and int(limit) <= 1024, (h, limit)
     r = script(state, "down")
     assert r.returncode == 0, r.stderr
     assert_gone(cluster)
