@@ -408,7 +408,7 @@ def test_renderer_console_does_not_wake_the_slave(coordinator, coordinator_refer
     assert_same_frames(out, coordinator_references.frames(SCENE, opts))
     woken = sum(1 for line in polls.read_text().splitlines() if line.startswith("poll("))
     # Invariant: fewer than three wake-ups a frame (the old slave, woken by every console
-    # write, polled 104 times for these 24 frames, the new one 47).
+    # write, polled 98-104 times for these 24 frames, the new one 47).
     assert 0 < woken < 3 * frames, woken
 
 
