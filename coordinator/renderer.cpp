@@ -139,7 +139,7 @@ bool Renderer::submit(int frame, const std::vector<Rect> &rects, std::string &er
 // times out (200 ms) and finds the full pipe; from then on the console is polled.
 void Renderer::poll_fds(std::vector<int> &fds) const
 {
-    if (child_.fd >= 0 && (console_polled_ || channel_ < 0))
+    if (child_.fd >= 0 && console_polled_)
         fds.push_back(child_.fd);
     if (channel_ >= 0)
         fds.push_back(channel_);
