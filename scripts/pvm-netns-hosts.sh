@@ -29,8 +29,10 @@
 #   slot K:  hosts fcKh1..fcKhN master fcKmaster  bridge fcbrK  addresses 10.231.K.x
 # so a first cluster gets the familiar names and a second one (a test run while a user's
 # cluster is up) gets others. `env` says which names this cluster got (PVM_NETNS_HOSTS,
-# PVM_NETNS_MASTER). The CPU cgroups are $CGROUP_CPU/fc-netns-<host>, the cpusets
-# $CGROUP_CPUSET/fc-netns-<host>: a process joins a host by writing its pid into both.
+# PVM_NETNS_MASTER) and how many open files a session there may have (PVM_NETNS_OPEN_FILES:
+# start the console under that limit too, `ulimit -Sn`, as newton-table does). The CPU
+# cgroups are $CGROUP_CPU/fc-netns-<host>, the cpusets $CGROUP_CPUSET/fc-netns-<host>: a
+# process joins a host by writing its pid into both.
 #
 # Then:   eval "$(scripts/pvm-netns-hosts.sh env)"
 #         printf 'add %s\nquit\n' "$PVM_NETNS_HOSTS" | pvm -n$PVM_NETNS_MASTER
@@ -450,6 +452,7 @@ up() {
         echo "export PVM_NETNS_STATE=$STATE"
         echo "export PVM_NETNS_MASTER=$master"
         echo "export PVM_NETNS_HOSTS='$(echo $names)'"
+        echo "export PVM_NETNS_OPEN_FILES=$HOST_OPEN_FILES"
     } > "$STATE/env"
     up_done=1
     echo "pvm-netns-hosts.sh: hosts$names up; master name $master; state in $STATE" >&2
