@@ -7,6 +7,7 @@
 
 #include <gtest/gtest.h>
 
+#include "povrayfc/block_handover.h"
 #include "povrayfc/block_tracer.h"
 #include "povrayfc/frame_coherence.h"
 #include "povrayfc/ray_recording.h"
@@ -618,6 +619,161 @@ TEST_F(FrameCoherenceRun, ReplayedBlockInTheSameOrderIsUpdatedInPlace) {
     EXPECT_NE(record(), first);
     EXPECT_TRUE(consistent(*record()));
     EXPECT_EQ(record()->deadSegments, 0u);
+}
+
+}  // namespace
+}  // namespace povrayfc
+
+namespace povrayfc {
+namespace {
+
+// Renders the blocks of `frame` whose serial `renderBlock` accepts, like RenderFc; pixels
+// End() reports changed go into `shown`, whole blocks reused as stored go there only when
+// the tracer says the front end does not hold them yet.
+template <class Accept>
+FcResult RenderFcBlocks(const ToyScene &scene, int frame, Accept renderBlock, Image &shown) {
+    FrameCoherence &fc = FrameCoherence::Get();
+    PublishSceneSignature(kScene, Signature(scene));
+    FrameSetup setup = ToySetup(frame);
+    setup.frontEndKeepsImage = true;
+    fc.BeginFrame(true, setup, kScene, {});
+    FcResult r;
+    r.image.assign(std::size_t(kW) * kH * 5, 0.0f);
+    BlockTracer tracer(fc.Plan());
+    std::uint32_t serial = 0;
+    for (int by = 0; by < kH; by += kBlock)
+        for (int bx = 0; bx < kW; bx += kBlock, ++serial) {
+            if (!renderBlock(serial)) continue;
+            const int right = bx + kBlock - 1, bottom = by + kBlock - 1;
+            auto show = [&](int x, int y) {
+                std::memcpy(&shown[(std::size_t(y) * kW + x) * 5], &r.image[(std::size_t(y) * kW + x) * 5],
+                            5 * sizeof(float));
+            };
+            if (tracer.Begin(serial, bx, by, right, bottom)) {
+                for (int y = by; y <= bottom; ++y)
+                    for (int x = bx; x <= right; ++x) {
+                        tracer.StoredPixel(x, y, &r.image[(std::size_t(y) * kW + x) * 5]);
+                        if (!tracer.StoredBlockIsShown()) show(x, y);
+                    }
+                continue;
+            }
+            RenderBlock(bx, by, right, bottom,
+                        [&](double x, double y, float c[5]) {
+                            if (tracer.Reuse(x, y, c)) return;
+                            tracer.BeginSample();
+                            TraceToy(scene, x, y, c);
+                            tracer.EndSample(x, y, c);
+                            ++r.tracedSamples;
+                        },
+                        r.image);
+            for (int y = by; y <= bottom; ++y)
+                for (int x = bx; x <= right; ++x) tracer.SetPixel(x, y, &r.image[(std::size_t(y) * kW + x) * 5]);
+            tracer.End();
+            int l, t, rr, b;
+            if (!tracer.ChangedRect(l, t, rr, b)) continue;
+            for (int y = t; y <= b; ++y)
+                for (int x = l; x <= rr; ++x)
+                    if (!tracer.SendOnlyChanged() || tracer.PixelChanged(x, y)) show(x, y);
+        }
+    fc.EndFrame(0);
+    return r;
+}
+
+const std::uint32_t kBlocksPerRow = kW / kBlock;
+bool LeftHalf(std::uint32_t serial) { return serial % kBlocksPerRow < kBlocksPerRow / 2; }
+bool Every(std::uint32_t) { return true; }
+const std::vector<int> kRightHalfRect = {kW / 2, 0, kW, kH};
+
+bool SameImage(const Image &a, const Image &b) { return std::memcmp(a.data(), b.data(), a.size() * sizeof(float)) == 0; }
+
+TEST_F(FrameCoherenceRun, BlocksHandedOverStayExactAndTraceOnlyWhatChangedSinceTheirFrame) {
+    // A renderer leaves the right half after frame 3 and takes it back, as handed over, in
+    // frame 6 (the same session stands for both renderers: it parsed frames 3 to 6 and
+    // forgot the right half's blocks when frame 4 left them out). Its front end never saw
+    // the right half's pixels, so they must all be sent.
+    Image shown(std::size_t(kW) * kH * 5, -1.0f);
+    for (int f = 1; f <= 3; ++f) RenderFcBlocks(Frame(1.0 + 0.5 * f), f, Every, shown);
+    std::vector<char> bytes;
+    int frame = 0;
+    ASSERT_TRUE(FrameCoherence::Get().HandOut(kRightHalfRect, bytes, frame));
+    EXPECT_EQ(frame, 3);
+    for (int f = 4; f <= 5; ++f) RenderFcBlocks(Frame(1.0 + 0.5 * f), f, LeftHalf, shown);
+    for (int y = 0; y < kH; ++y)
+        for (int x = kW / 2; x < kW; ++x) shown[(std::size_t(y) * kW + x) * 5] = -1.0f;
+
+    FrameCoherence::Get().HandIn(bytes);
+    const ToyScene scene = Frame(1.0 + 0.5 * 6);
+    const FcResult handed = RenderFcBlocks(scene, 6, Every, shown);
+    const FrameStats &stats = FrameCoherence::Get().LastStats();
+    EXPECT_EQ(stats.blocksHandedOver, std::uint64_t(kW * kH / 2 / (kBlock * kBlock)));
+    EXPECT_EQ(stats.handoverRefused, "");
+    // Invariant: the frame equals its full render, in the tracer's pixels and in what the
+    // front end was sent.
+    const Image full = RenderFull(scene);
+    EXPECT_TRUE(SameImage(full, handed.image));
+    EXPECT_TRUE(SameImage(full, shown));
+
+    // Without the hand-over the same frame traces the right half whole: more samples.
+    SetUp();
+    Image shown2(std::size_t(kW) * kH * 5, -1.0f);
+    for (int f = 1; f <= 3; ++f) RenderFcBlocks(Frame(1.0 + 0.5 * f), f, Every, shown2);
+    for (int f = 4; f <= 5; ++f) RenderFcBlocks(Frame(1.0 + 0.5 * f), f, LeftHalf, shown2);
+    const FcResult fresh = RenderFcBlocks(scene, 6, Every, shown2);
+    EXPECT_TRUE(SameImage(full, fresh.image));
+    EXPECT_LT(handed.tracedSamples, fresh.tracedSamples);
+}
+
+TEST_F(FrameCoherenceRun, AHandOverThisRendererCannotCheckIsRefusedAndTheBlocksAreTraced) {
+    Image shown(std::size_t(kW) * kH * 5, -1.0f);
+    for (int f = 1; f <= 2; ++f) RenderFcBlocks(Frame(1.0 + 0.5 * f), f, Every, shown);
+    std::vector<char> bytes;
+    int frame = 0;
+    ASSERT_TRUE(FrameCoherence::Get().HandOut(kRightHalfRect, bytes, frame));
+
+    // Frames this renderer never parsed: a new run that starts at frame 3.
+    SetUp();
+    RenderFcBlocks(Frame(2.5), 3, LeftHalf, shown);
+    FrameCoherence::Get().HandIn(bytes);
+    const FcResult r = RenderFcBlocks(Frame(3.0), 4, Every, shown);
+    EXPECT_EQ(FrameCoherence::Get().LastStats().blocksHandedOver, 0u);
+    EXPECT_NE(FrameCoherence::Get().LastStats().handoverRefused.find("frame 2 is not among"), std::string::npos);
+    EXPECT_TRUE(SameImage(RenderFull(Frame(3.0)), r.image));
+
+    // The light moved since the hand-over's frame: every sample may have changed.
+    SetUp();
+    for (int f = 1; f <= 2; ++f) RenderFcBlocks(Frame(1.0 + 0.5 * f), f, Every, shown);
+    bytes.clear();
+    ASSERT_TRUE(FrameCoherence::Get().HandOut(kRightHalfRect, bytes, frame));
+    ToyScene lit = Frame(2.5);
+    lit.lightY = 60;
+    RenderFcBlocks(lit, 3, LeftHalf, shown);
+    FrameCoherence::Get().HandIn(bytes);
+    const FcResult r2 = RenderFcBlocks(lit, 4, Every, shown);
+    EXPECT_EQ(FrameCoherence::Get().LastStats().blocksHandedOver, 0u);
+    EXPECT_NE(FrameCoherence::Get().LastStats().handoverRefused.find("since frame 2"), std::string::npos);
+    EXPECT_TRUE(SameImage(RenderFull(lit), r2.image));
+}
+
+TEST_F(FrameCoherenceRun, BytesThatAreNotAWholeHandOverAreRefused) {
+    Image shown(std::size_t(kW) * kH * 5, -1.0f);
+    RenderFcBlocks(Frame(1.0), 1, Every, shown);
+    std::vector<char> bytes;
+    int frame = 0;
+    ASSERT_TRUE(FrameCoherence::Get().HandOut(kRightHalfRect, bytes, frame));
+    Handover h;
+    std::string why;
+    ASSERT_TRUE(ReadHandover(bytes.data(), bytes.size(), h, why)) << why;
+    EXPECT_EQ(h.blocks.size(), std::size_t(kW * kH / 2 / (kBlock * kBlock)));
+    for (std::size_t cut : {std::size_t(4), bytes.size() / 2, bytes.size() - 1}) {
+        EXPECT_FALSE(ReadHandover(bytes.data(), cut, h, why)) << cut;
+        EXPECT_NE(why, "");
+    }
+    std::vector<char> longer = bytes;
+    longer.push_back(0);
+    EXPECT_FALSE(ReadHandover(longer.data(), longer.size(), h, why));
+    const char junk[] = "render 3 0,0,8,8";
+    EXPECT_FALSE(ReadHandover(junk, sizeof junk, h, why));
+    EXPECT_EQ(why, "not a frame-coherence hand-over");
 }
 
 }  // namespace
