@@ -135,6 +135,28 @@ void Master::send_job(SlaveInfo &s, const Job &job)
         slave_gone(s, "cannot be sent work: " + pvm_error(r), false);
 }
 
+void Master::send_handouts()
+{
+    std::vector<Move> moves = sched_->take_moves();
+    if (!opt_.fc)
+        return;
+    std::map<std::pair<int, int>, Handout> asks;    // (from, to) -> its tiles
+    for (const Move &m : moves) {
+        Handout &h = asks[{m.from, m.to}];
+        h.dest = m.to;
+        h.tiles.push_back(m.tile);
+        h.rects.push_back(sched_->tile(m.tile));
+    }
+    for (auto &kv : asks) {
+        SlaveInfo *from = cluster_.slave(kv.first.first);
+        if (!from || from->state != SlaveState::Ready)
+            continue;
+        int r = send_msg(from->tid, FC_HANDOUT, kv.second);
+        debug_log("FC_HANDOUT %zu tile(s) t%x -> t%x: %d", kv.second.tiles.size(),
+                  unsigned(from->tid), unsigned(kv.second.dest), r);
+    }
+}
+
 // Top up every ready slave to kJobsAhead jobs: orphans first, then its range, then splits and
 // joins, then straggler copies (schedule.h).
 void Master::dispatch()
@@ -152,6 +174,7 @@ void Master::dispatch()
             if (!j)
                 break;
             send_job(s, *j);
+            send_handouts();
         }
     }
     // Nothing running, yet frames are missing: a bookkeeping bug; do not hang on it.

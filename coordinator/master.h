@@ -56,6 +56,9 @@ private:
     // Helpers.
     void plan_if_ready();
     void dispatch();
+    // With fc, the tiles a division moved take their renderer's state to their new slave
+    // (protocol.h, Handout): asked of the slave that had them.
+    void send_handouts();
     void send_job(SlaveInfo &s, const Job &job);
     void cancel_jobs(const std::vector<Job> &jobs);
     bool frame_finished(int index);

@@ -104,9 +104,10 @@ bool Renderer::can_take(int frame) const
     return true;
 }
 
-bool Renderer::submit(int frame, const std::vector<Rect> &rects, std::string &err)
+bool Renderer::submit(int frame, const std::vector<Rect> &rects, std::string &err,
+                      const std::vector<std::string> &words)
 {
-    std::string line = render_control_line(frame, rects);
+    std::string line = render_control_line(frame, rects, words);
     const char *p = line.data();
     size_t left = line.size();
     while (left > 0) {
@@ -184,7 +185,8 @@ void Renderer::classify_exit(int status, RendererFailure &failure)
                                       : excerpt;
 }
 
-bool Renderer::pump(std::vector<FrameRecord> &done, RendererFailure &failure)
+bool Renderer::pump(std::vector<FrameRecord> &done, std::vector<FrameRecord> &handouts,
+                    RendererFailure &failure)
 {
     if (state_ == Stopped)
         return true;
@@ -226,7 +228,11 @@ bool Renderer::pump(std::vector<FrameRecord> &done, RendererFailure &failure)
                 break;
             if (r < 0)
                 return fail(failure, false, -1, err);
-            if (state_ != Busy || rec.frame != frame_ || rec.rects != rects_)
+            if (rec.handout && state_ == Busy) {
+                handouts.push_back(std::move(rec));
+                continue;
+            }
+            if (rec.handout || state_ != Busy || rec.frame != frame_ || rec.rects != rects_)
                 return fail(failure, false, -1,
                             strf("the renderer sent frame %d, but frame %d was asked for",
                                  rec.frame, frame_));
