@@ -157,6 +157,20 @@ void Master::send_handouts()
     }
 }
 
+void Master::relay_state(int buf)
+{
+    int dest = 0;
+    if (pvm_upkint(&dest, 1, 1) < 0)
+        return;
+    SlaveInfo *s = cluster_.slave(dest);
+    if (!s || s->state != SlaveState::Ready)
+        return;     // the taker is gone: its tiles are someone else's now, traced in full
+    int previous = pvm_setsbuf(buf);
+    int r = pvm_send(dest, FC_STATE);
+    pvm_setsbuf(previous);
+    debug_log("relayed FC_STATE to t%x: %d", unsigned(dest), r);
+}
+
 // Top up every ready slave to kJobsAhead jobs: orphans first, then its range, then splits and
 // joins, then straggler copies (schedule.h).
 void Master::dispatch()
@@ -762,6 +776,7 @@ int Master::loop()
             case FC_TASKEXIT: on_task_exit(); break;
             case FC_HOSTDEL: on_host_delete(); break;
             case FC_HOSTADD: on_host_add(); break;
+            case FC_STATE: relay_state(buf); break;
             default:
                 report_.clear_line();
                 fprintf(stderr, "fc-master: warning: unexpected message %s (%d) from t%x\n",

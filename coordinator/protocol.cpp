@@ -205,11 +205,11 @@ bool unpack(Handout &m)
 
 int pack(const State &m)
 {
-    return Packer().i(m.frame).ints(m.tiles).rects(m.rects).bytes(m.bytes).status;
+    return Packer().i(m.dest).i(m.frame).ints(m.tiles).rects(m.rects).bytes(m.bytes).status;
 }
 bool unpack(State &m)
 {
-    bool ok = Unpacker().i(m.frame).ints(m.tiles).rects(m.rects).bytes(m.bytes).ok;
+    bool ok = Unpacker().i(m.dest).i(m.frame).ints(m.tiles).rects(m.rects).bytes(m.bytes).ok;
     return ok && m.tiles.size() == m.rects.size();
 }
 

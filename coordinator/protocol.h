@@ -99,7 +99,8 @@ struct Handout {                        // FC_HANDOUT: master -> the slave that 
     std::vector<Rect> rects;
 };
 
-struct State {                          // FC_STATE: that slave -> dest
+struct State {                          // FC_STATE: that slave -> master -> dest
+    int dest = 0;                       // the slave it is for (the master relays it)
     int frame = 0;                      // the frame the state is from (-1: it had none)
     std::vector<int> tiles;
     std::vector<Rect> rects;

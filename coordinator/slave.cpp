@@ -269,12 +269,15 @@ void Slave::send_states(std::vector<FrameRecord> &handouts)
         if (rec.frame < 0 || rec.data.empty())
             continue;
         State st;
+        st.dest = h.dest;
         st.frame = rec.frame;
         st.tiles = h.tiles;
         st.rects = h.rects;
         st.bytes.swap(rec.data);
-        // The taker may be gone: then there is nothing to hand over.
-        int r = send_msg(h.dest, FC_STATE, st);
+        // Through the master, which relays it: the slaves have no links to each other, and a
+        // first direct send waits until the other slave answers PVM's connection request
+        // (it held this slave's frames up to 200 ms, its poll timeout).
+        int r = send_msg(master_, FC_STATE, st);
         debug_log("state of frame %d (%zu bytes) to t%x: %d", st.frame, st.bytes.size(),
                   unsigned(h.dest), r);
     }
