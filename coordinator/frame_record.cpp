@@ -48,29 +48,7 @@ bool parse_record_header(const std::string &line, FrameRecord &rec, size_t &payl
     file_bytes = 0;
     std::istringstream words(line);
     std::string magic, version, w;
-    if ((words >> magic >> version) && magic == "FCSTATE" && version == "1") {
-        rec = FrameRecord();
-        rec.handout = true;
-        double frame = 0, bytes = -1;
-        while (words >> w) {
-            size_t eq = w.find('=');
-            double v = 0;
-            if (eq == std::string::npos || !parse_number(w.substr(eq + 1), v))
-                continue;
-            if (w.compare(0, eq, "frame") == 0)
-                frame = v;
-            else if (w.compare(0, eq, "bytes") == 0)
-                bytes = v;
-        }
-        if (bytes < 0 || bytes > double(kMaxPayload)) {
-            err = "hand-out record without its size: '" + line.substr(0, 80) + "'";
-            return false;
-        }
-        rec.frame = int(frame);
-        payload_bytes = size_t(bytes);
-        return true;
-    }
-    if (magic != "FCFRAME" || version != "1") {
+    if (!(words >> magic >> version) || magic != "FCFRAME" || version != "1") {
         err = "not a frame record: '" + line.substr(0, 80) + "'";
         return false;
     }
@@ -187,24 +165,12 @@ int FrameRecordReader::next(FrameRecord &rec, std::string &err)
     return 1;
 }
 
-std::string render_control_line(int frame, const std::vector<Rect> &rects,
-                                const std::vector<std::string> &words)
+std::string render_control_line(int frame, const std::vector<Rect> &rects)
 {
     std::string line = strf("render %d", frame);
     for (const Rect &r : rects)
         line += strf(" %d,%d,%d,%d", r.x0, r.y0, r.x1, r.y1);
-    for (const std::string &w : words)
-        line += " " + w;
     return line + "\n";
-}
-
-std::string handout_word(const std::vector<Rect> &rects)
-{
-    std::string word = "handout=";
-    for (size_t i = 0; i < rects.size(); i++)
-        word += strf("%s%d,%d,%d,%d", i ? "/" : "", rects[i].x0, rects[i].y0, rects[i].x1,
-                     rects[i].y1);
-    return word;
 }
 
 } // namespace fc

@@ -23,11 +23,7 @@
 
 namespace fc {
 
-// Patch 0045: a frame-control line's handout=RECTS makes the renderer write, before that
-// frame's record, "FCSTATE 1 frame=G bytes=B\n" and B bytes: frame coherence's stored blocks
-// of those rectangles as frame G left them (G = -1, no bytes: it had none).
 struct FrameRecord {
-    bool handout = false;           // an FCSTATE record: frame is G, data the bytes
     int frame = 0;
     double rays = 0;                // -1 when POV-Ray sent no statistics
     double parse_seconds = 0, trace_seconds = 0;
@@ -63,12 +59,7 @@ bool parse_record_header(const std::string &line, FrameRecord &record, size_t &p
                          size_t &file_bytes, std::string &err);
 
 // The frame-control line that asks the renderer for frame `frame` restricted to rects
-// (none = the whole render area), with its newline. `words` (handout=..., handin=...) follow
-// the rectangles.
-std::string render_control_line(int frame, const std::vector<Rect> &rects,
-                                const std::vector<std::string> &words = {});
-
-// The handout= word for rects.
-std::string handout_word(const std::vector<Rect> &rects);
+// (none = the whole render area), with its newline.
+std::string render_control_line(int frame, const std::vector<Rect> &rects);
 
 } // namespace fc

@@ -135,42 +135,6 @@ void Master::send_job(SlaveInfo &s, const Job &job)
         slave_gone(s, "cannot be sent work: " + pvm_error(r), false);
 }
 
-void Master::send_handouts()
-{
-    std::vector<Move> moves = sched_->take_moves();
-    if (!opt_.fc)
-        return;
-    std::map<std::pair<int, int>, Handout> asks;    // (from, to) -> its tiles
-    for (const Move &m : moves) {
-        Handout &h = asks[{m.from, m.to}];
-        h.dest = m.to;
-        h.tiles.push_back(m.tile);
-        h.rects.push_back(sched_->tile(m.tile));
-    }
-    for (auto &kv : asks) {
-        SlaveInfo *from = cluster_.slave(kv.first.first);
-        if (!from || from->state != SlaveState::Ready)
-            continue;
-        int r = send_msg(from->tid, FC_HANDOUT, kv.second);
-        debug_log("FC_HANDOUT %zu tile(s) t%x -> t%x: %d", kv.second.tiles.size(),
-                  unsigned(from->tid), unsigned(kv.second.dest), r);
-    }
-}
-
-void Master::relay_state(int buf)
-{
-    int dest = 0;
-    if (pvm_upkint(&dest, 1, 1) < 0)
-        return;
-    SlaveInfo *s = cluster_.slave(dest);
-    if (!s || s->state != SlaveState::Ready)
-        return;     // the taker is gone: its tiles are someone else's now, traced in full
-    int previous = pvm_setsbuf(buf);
-    int r = pvm_send(dest, FC_STATE);
-    pvm_setsbuf(previous);
-    debug_log("relayed FC_STATE to t%x: %d", unsigned(dest), r);
-}
-
 // Top up every ready slave to kJobsAhead jobs: orphans first, then its range, then splits and
 // joins, then straggler copies (schedule.h).
 void Master::dispatch()
@@ -188,7 +152,6 @@ void Master::dispatch()
             if (!j)
                 break;
             send_job(s, *j);
-            send_handouts();
         }
     }
     // Nothing running, yet frames are missing: a bookkeeping bug; do not hang on it.
@@ -776,7 +739,6 @@ int Master::loop()
             case FC_TASKEXIT: on_task_exit(); break;
             case FC_HOSTDEL: on_host_delete(); break;
             case FC_HOSTADD: on_host_add(); break;
-            case FC_STATE: relay_state(buf); break;
             default:
                 report_.clear_line();
                 fprintf(stderr, "fc-master: warning: unexpected message %s (%d) from t%x\n",

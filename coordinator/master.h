@@ -56,11 +56,6 @@ private:
     // Helpers.
     void plan_if_ready();
     void dispatch();
-    // With fc, the tiles a division moved take their renderer's state to their new slave
-    // (protocol.h, Handout): asked of the slave that had them.
-    void send_handouts();
-    // FC_STATE from a slave: relayed to the slave it names, as it came (no unpacking).
-    void relay_state(int buf);
     void send_job(SlaveInfo &s, const Job &job);
     void cancel_jobs(const std::vector<Job> &jobs);
     bool frame_finished(int index);

@@ -17,8 +17,6 @@ const char *tag_name(int tag)
     case FC_CANCEL: return "FC_CANCEL";
     case FC_PING: return "FC_PING";
     case FC_QUIT: return "FC_QUIT";
-    case FC_HANDOUT: return "FC_HANDOUT";
-    case FC_STATE: return "FC_STATE";
     case FC_TASKEXIT: return "FC_TASKEXIT";
     case FC_HOSTDEL: return "FC_HOSTDEL";
     case FC_HOSTADD: return "FC_HOSTADD";
@@ -194,23 +192,6 @@ bool unpack(FrameResult &m)
         .d(m.trace_seconds).i(m.fresh).s(m.encoding).bytes(m.data).bytes(m.file)
         .d(m.file_gamma).ok;
     return ok && !m.rects.empty() && m.tiles.size() == m.rects.size();
-}
-
-int pack(const Handout &m) { return Packer().i(m.dest).ints(m.tiles).rects(m.rects).status; }
-bool unpack(Handout &m)
-{
-    bool ok = Unpacker().i(m.dest).ints(m.tiles).rects(m.rects).ok;
-    return ok && !m.rects.empty() && m.tiles.size() == m.rects.size();
-}
-
-int pack(const State &m)
-{
-    return Packer().i(m.dest).i(m.frame).ints(m.tiles).rects(m.rects).bytes(m.bytes).status;
-}
-bool unpack(State &m)
-{
-    bool ok = Unpacker().i(m.dest).i(m.frame).ints(m.tiles).rects(m.rects).bytes(m.bytes).ok;
-    return ok && m.tiles.size() == m.rects.size();
 }
 
 int pack(const Progress &m) { return Packer().i(m.job).i(m.frame).status; }

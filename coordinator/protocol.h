@@ -27,8 +27,6 @@ enum Tag {
     FC_CANCEL = 110,
     FC_PING = 111,
     FC_QUIT = 112,
-    FC_HANDOUT = 113,
-    FC_STATE = 114,
     FC_TASKEXIT = 120,
     FC_HOSTDEL = 121,
     FC_HOSTADD = 122,
@@ -90,23 +88,6 @@ struct FrameResult {
     double file_gamma = 0;              // the gamma POV-Ray's file records (0: not said)
 };
 
-// With frame coherence, tiles that move from one slave to another take their renderer's
-// stored state along (povray-fc's block_handover.h), so the new slave re-traces only what
-// changed since, not the whole tile.
-struct Handout {                        // FC_HANDOUT: master -> the slave that had the tiles
-    int dest = 0;                       // the slave that takes them over
-    std::vector<int> tiles;
-    std::vector<Rect> rects;
-};
-
-struct State {                          // FC_STATE: that slave -> master -> dest
-    int dest = 0;                       // the slave it is for (the master relays it)
-    int frame = 0;                      // the frame the state is from (-1: it had none)
-    std::vector<int> tiles;
-    std::vector<Rect> rects;
-    std::vector<uint8_t> bytes;         // povray-fc's hand-out, as its frame channel sent it
-};
-
 struct Progress {
     int job = 0;
     int frame = 0;
@@ -131,10 +112,6 @@ int pack(const JobMsg &m);
 bool unpack(JobMsg &m);
 int pack(const FrameResult &m);
 bool unpack(FrameResult &m);
-int pack(const Handout &m);
-bool unpack(Handout &m);
-int pack(const State &m);
-bool unpack(State &m);
 int pack(const Progress &m);
 bool unpack(Progress &m);
 int pack(const Failure &m);

@@ -104,10 +104,9 @@ bool Renderer::can_take(int frame) const
     return true;
 }
 
-bool Renderer::submit(int frame, const std::vector<Rect> &rects, std::string &err,
-                      const std::vector<std::string> &words)
+bool Renderer::submit(int frame, const std::vector<Rect> &rects, std::string &err)
 {
-    std::string line = render_control_line(frame, rects, words);
+    std::string line = render_control_line(frame, rects);
     const char *p = line.data();
     size_t left = line.size();
     while (left > 0) {
@@ -185,8 +184,7 @@ void Renderer::classify_exit(int status, RendererFailure &failure)
                                       : excerpt;
 }
 
-bool Renderer::pump(std::vector<FrameRecord> &done, std::vector<FrameRecord> &handouts,
-                    RendererFailure &failure)
+bool Renderer::pump(std::vector<FrameRecord> &done, RendererFailure &failure)
 {
     if (state_ == Stopped)
         return true;
@@ -228,11 +226,7 @@ bool Renderer::pump(std::vector<FrameRecord> &done, std::vector<FrameRecord> &ha
                 break;
             if (r < 0)
                 return fail(failure, false, -1, err);
-            if (rec.handout && state_ == Busy) {
-                handouts.push_back(std::move(rec));
-                continue;
-            }
-            if (rec.handout || state_ != Busy || rec.frame != frame_ || rec.rects != rects_)
+            if (state_ != Busy || rec.frame != frame_ || rec.rects != rects_)
                 return fail(failure, false, -1,
                             strf("the renderer sent frame %d, but frame %d was asked for",
                                  rec.frame, frame_));

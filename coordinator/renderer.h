@@ -60,21 +60,17 @@ public:
     // Whether this process can render frame `frame` (over any rectangles) without starting over.
     bool can_take(int frame) const;
 
-    // Ask the waiting process to render frame over rects (can_take must hold). `words` go on
-    // the control line after the rectangles (handout=, handin=: frame_record.h).
-    bool submit(int frame, const std::vector<Rect> &rects, std::string &err,
-                const std::vector<std::string> &words = {});
+    // Ask the waiting process to render frame over rects (can_take must hold).
+    bool submit(int frame, const std::vector<Rect> &rects, std::string &err);
 
     // File descriptors to poll for input: the channel, and the console while it is chatty
     // (pump reads it whatever woke the caller).
     void poll_fds(std::vector<int> &fds) const;
 
-    // Read what arrived. Hand-outs (frame_record.h) are appended to handouts in the order
-    // their handout= words went; finished frames to done (the process is Waiting again);
+    // Read what arrived. Finished frames are appended to done (the process is Waiting again);
     // returns false when the process failed or exited while Busy, with failure filled in, or
     // exited unexpectedly in any state (then it is Stopped).
-    bool pump(std::vector<FrameRecord> &done, std::vector<FrameRecord> &handouts,
-              RendererFailure &failure);
+    bool pump(std::vector<FrameRecord> &done, RendererFailure &failure);
 
     // End the process: "stop" when it waits (it exits by itself), otherwise kill it.
     void stop();

@@ -322,17 +322,6 @@ void Schedule::divide(int ri, int index, double when)
         std::vector<int> unowned;
         for (int t : todo) {
             auto o = r.owner.find(t);
-            auto d = r.deferred.find(t);
-            if (d != r.deferred.end() && index >= d->second.from_index) {
-                // A move decided kHandoverLead frames ago: the tile's state has gone ahead.
-                int to = d->second.to;
-                r.deferred.erase(d);
-                if (load.count(to)) {
-                    share[to].push_back(t);
-                    load[to] += tiles_[size_t(t)].area();
-                    continue;
-                }
-            }
             if (o != r.owner.end() && load.count(o->second)) {
                 share[o->second].push_back(t);
                 load[o->second] += tiles_[size_t(t)].area();
@@ -363,8 +352,6 @@ void Schedule::divide(int ri, int index, double when)
             int pick = -1;
             long best_d = LONG_MAX;
             for (int t : share[over]) {
-                if (r.deferred.count(t))
-                    continue;   // already on its way
                 long d = LONG_MAX;
                 for (int u : share[under])
                     d = std::min(d, long(std::abs(u - t)));
@@ -375,22 +362,12 @@ void Schedule::divide(int ri, int index, double when)
                     pick = t;
                 }
             }
-            if (pick < 0)
-                break;
             double a = tiles_[size_t(pick)].area();
             // Stop when moving would only swap the roles of the two.
             if ((load[under] + a) / target[under] >= load[over] / target[over])
                 break;
-            auto had = r.owner.find(pick);
-            if (had != r.owner.end() && had->second == over && index + kHandoverLead <= r.hi) {
-                // Its renderer's state goes to `under`, and the tile follows kHandoverLead
-                // frames later (counted in the loads now, so that it is not moved twice).
-                r.deferred[pick] = Range::Deferred{under, index + kHandoverLead};
-                moves_.push_back(Move{pick, over, under, index});
-            } else {
-                share[over].erase(std::find(share[over].begin(), share[over].end(), pick));
-                share[under].push_back(pick);
-            }
+            share[over].erase(std::find(share[over].begin(), share[over].end(), pick));
+            share[under].push_back(pick);
             load[over] -= a;
             load[under] += a;
             moved = true;
@@ -407,13 +384,6 @@ void Schedule::divide(int ri, int index, double when)
         for (int t : kv.second)
             r.owner[t] = kv.first;
     }
-}
-
-std::vector<Move> Schedule::take_moves()
-{
-    std::vector<Move> m;
-    m.swap(moves_);
-    return m;
 }
 
 // Without fc a job's fixed costs (its renderer parses the frame and sets it up, its result

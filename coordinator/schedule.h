@@ -76,24 +76,12 @@ struct Job {
     double rendering = -1;      // its slave began it (its previous job was done); -1: queued
 };
 
-// A tile that a division moved from the slave that rendered it last to another (with fc: its
-// renderer's state can follow it, protocol.h's Handout).
-struct Move {
-    int tile = 0;
-    int from = 0, to = 0;
-    int index = 0;              // the frame index it moved at
-};
-
 class Schedule {
 public:
     static const int kWindow = 4;   // frames a range may divide beyond its oldest unfinished one
     static const int kRetries = 3;  // failed attempts of a cell before the render fails
     static constexpr double kStragglerSeconds = 1.0;   // a job runs this long before a copy
     static const int kMoveGap = 2 * kWindow;    // frames between two rebalancing moves
-    // With fc a tile moves this many frames after the division that decides it: its old slave
-    // hands its state out at its next frame boundary, and the new slave, often ahead of it by
-    // a frame or two, must have it before it renders the tile.
-    static const int kHandoverLead = 2;
 
     Schedule(const std::vector<Rect> &tiles, int nframes, Division division);
 
@@ -152,10 +140,6 @@ public:
     // Measured speed of a slave: pixels of a job per second.
     void note_speed(int slave, double pixels, double seconds);
 
-    // The moves of the divisions since the last call (with fc only: without it no renderer
-    // keeps state in its tiles).
-    std::vector<Move> take_moves();
-
     const Job *find(int id) const;
     const std::map<int, Job> &jobs() const { return jobs_; }
     int live_jobs(int slave) const;
@@ -175,14 +159,6 @@ private:
         std::map<int, int> owner;       // tile -> slave that had it last
         bool lagging = false;           // a member waited for the others: rebalance
         int last_move = -1000;          // index of the last division that moved tiles
-        // Tiles a division decided to move, with their renderer's state (Move): tile -> the
-        // slave taking it and the first frame index it does. Until then the tile stays where
-        // it is, while its state travels (kHandoverLead).
-        struct Deferred {
-            int to = 0;
-            int from_index = 0;
-        };
-        std::map<int, Deferred> deferred;
     };
     struct SlaveState {
         int host = 0;
@@ -239,7 +215,6 @@ private:
     double jump_cost_ = 0;              // a renderer's first frame after a jump (0: unknown)
     int hybrid_members_ = 1;            // slaves a hybrid range takes before it is split
     std::deque<Orphan> orphans_;
-    std::vector<Move> moves_;
     std::map<int, Job> jobs_;
     int next_id_ = 1;
 };

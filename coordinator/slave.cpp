@@ -6,24 +6,14 @@
 // frame channel and goes to the master as FC_FRAME. The renderer is started again only when
 // a job cannot follow the last one (an earlier frame) or after it failed. The renderer dies with the slave
 // (PR_SET_PDEATHSIG), the slave with the master (pvm_notify on the master's exit).
-//
-// With frame coherence, a tile the master moves elsewhere takes its renderer's state along:
-// FC_HANDOUT names the tiles and the slave that takes them; the next control line asks the
-// renderer to hand their stored blocks out (handout=), and they go to that slave as FC_STATE.
-// A slave keeps the states it receives until a job of theirs comes, and hands them in with
-// it (handin=): its renderer re-traces only what changed since (povray-fc's
-// block_handover.h). A state that comes too late, or that the renderer cannot check, only
-// costs the tile its full trace, as a move without one did.
 #include <poll.h>
 #include <signal.h>
 #include <unistd.h>
 
-#include <algorithm>
 #include <csignal>
 #include <cstdio>
 #include <cstring>
 #include <deque>
-#include <map>
 
 #include <pvm3.h>
 
@@ -41,7 +31,6 @@ volatile sig_atomic_t g_stop = 0;
 void on_signal(int) { g_stop = 1; }
 
 const double kHeartbeat = 2.0;      // seconds between FC_PROGRESS messages while busy
-const size_t kMaxHandIns = 16;      // states kept for jobs to come (the oldest go first)
 
 class Slave {
 public:
@@ -58,14 +47,9 @@ private:
     void on_setup();
     void on_job();
     void on_cancel();
-    void on_handout();
-    void on_state();
 
     // The renderer.
     void feed_renderer();
-    std::vector<std::string> handover_words(const JobMsg &job);
-    void send_states(std::vector<FrameRecord> &handouts);
-    void forget_handovers();
     void renderer_output();
     bool send_frame(const FrameRecord &rec);
     void fail(const JobMsg &job, const RendererFailure &f);
@@ -83,18 +67,6 @@ private:
     bool busy_ = false;             // current_ is with the renderer
     JobMsg current_;
     double last_beat_ = 0;
-
-    // Hand-overs (see the top of this file).
-    struct HandIn {
-        State state;
-        std::string path;               // the bytes, for the renderer to read
-    };
-    std::deque<Handout> handouts_;      // asked for, to go on the next control line
-    std::deque<Handout> handouts_sent_; // on the current line, in order: their records' dests
-    std::deque<HandIn> handins_;        // received, waiting for a job of their tiles
-    std::vector<std::string> handins_read_;   // on the current line: removed after its frame
-    std::map<int, int> tile_frame_;     // per tile, the last frame given to the renderer
-    int handin_files_ = 0;
 };
 
 bool Slave::init(std::string &err)
@@ -193,109 +165,6 @@ void Slave::on_cancel()
     }
 }
 
-void Slave::on_handout()
-{
-    Handout h;
-    if (!unpack(h))
-        return;     // a hand-over is an optimisation: without it the tile is traced in full
-    debug_log("hand out %zu tile(s) to t%x", h.tiles.size(), unsigned(h.dest));
-    handouts_.push_back(h);
-}
-
-void Slave::on_state()
-{
-    HandIn in;
-    if (!unpack(in.state) || in.state.frame < 0 || in.state.bytes.empty())
-        return;
-    // A state older than what this renderer rendered of every one of its tiles is of no use.
-    bool useful = false;
-    for (int t : in.state.tiles) {
-        auto f = tile_frame_.find(t);
-        useful = useful || f == tile_frame_.end() || f->second <= in.state.frame;
-    }
-    if (!useful)
-        return;
-    in.path = strf("%s/handin-%d", workdir_.c_str(), handin_files_++);
-    std::string err;
-    // Read by the renderer before its next frame, removed after it: no need to sync it.
-    if (!write_text(in.path, std::string(in.state.bytes.begin(), in.state.bytes.end()), err)) {
-        debug_log("hand-in dropped: %s", err.c_str());
-        return;
-    }
-    in.state.bytes.clear();
-    debug_log("hand-in of %zu tile(s) from frame %d", in.state.tiles.size(), in.state.frame);
-    handins_.push_back(in);
-    if (handins_.size() > kMaxHandIns) {
-        unlink(handins_.front().path.c_str());
-        handins_.pop_front();
-    }
-}
-
-// The handout= and handin= words of the control line for `job`.
-std::vector<std::string> Slave::handover_words(const JobMsg &job)
-{
-    std::vector<std::string> words;
-    handouts_sent_.clear();
-    for (const Handout &h : handouts_) {
-        words.push_back(handout_word(h.rects));
-        handouts_sent_.push_back(h);
-    }
-    handouts_.clear();
-    for (auto it = handins_.begin(); it != handins_.end();) {
-        bool mine = false;
-        for (int t : it->state.tiles)
-            mine = mine || std::find(job.tiles.begin(), job.tiles.end(), t) != job.tiles.end();
-        if (!mine) {
-            ++it;
-            continue;
-        }
-        words.push_back("handin=" + it->path);
-        handins_read_.push_back(it->path);
-        it = handins_.erase(it);
-    }
-    for (int t : job.tiles)
-        tile_frame_[t] = job.frame;
-    return words;
-}
-
-// The renderer's hand-outs go to the slaves the master named, in the order they were asked.
-void Slave::send_states(std::vector<FrameRecord> &handouts)
-{
-    for (FrameRecord &rec : handouts) {
-        if (handouts_sent_.empty())
-            break;
-        Handout h = handouts_sent_.front();
-        handouts_sent_.pop_front();
-        if (rec.frame < 0 || rec.data.empty())
-            continue;
-        State st;
-        st.dest = h.dest;
-        st.frame = rec.frame;
-        st.tiles = h.tiles;
-        st.rects = h.rects;
-        st.bytes.swap(rec.data);
-        // Through the master, which relays it: the slaves have no links to each other, and a
-        // first direct send waits until the other slave answers PVM's connection request
-        // (it held this slave's frames up to 200 ms, its poll timeout).
-        int r = send_msg(master_, FC_STATE, st);
-        debug_log("state of frame %d (%zu bytes) to t%x: %d", st.frame, st.bytes.size(),
-                  unsigned(h.dest), r);
-    }
-}
-
-// A new renderer process has no frames to check a state against; requests already on a
-// dead process's line are lost.
-void Slave::forget_handovers()
-{
-    handouts_sent_.clear();
-    for (const std::string &p : handins_read_)
-        unlink(p.c_str());
-    handins_read_.clear();
-    for (const HandIn &in : handins_)
-        unlink(in.path.c_str());
-    handins_.clear();
-}
-
 // Give the renderer its next job, starting a process when the running one cannot take it.
 void Slave::feed_renderer()
 {
@@ -317,7 +186,6 @@ void Slave::feed_renderer()
             c.coherent = setup_.coherent != 0;
             std::string err;
             renderer_.stop();
-            forget_handovers();
             if (!renderer_.start(c, j.frame, err)) {
                 RendererFailure f;
                 f.message = "cannot start the renderer: " + err;
@@ -331,10 +199,7 @@ void Slave::feed_renderer()
         std::string err;
         current_ = j;
         queue_.pop_front();
-        std::vector<std::string> words;
-        if (setup_.coherent)
-            words = handover_words(current_);
-        if (!renderer_.submit(current_.frame, current_.rects, err, words)) {
+        if (!renderer_.submit(current_.frame, current_.rects, err)) {
             // The process died before it read the job (pump() had not seen it end yet).
             RendererFailure f;
             f.message = err;
@@ -373,18 +238,13 @@ bool Slave::send_frame(const FrameRecord &rec)
 
 void Slave::renderer_output()
 {
-    std::vector<FrameRecord> done, handouts;
+    std::vector<FrameRecord> done;
     RendererFailure failure;
-    bool ok = renderer_.pump(done, handouts, failure);
-    send_states(handouts);
+    bool ok = renderer_.pump(done, failure);
     for (const FrameRecord &rec : done) {
         if (!busy_)
             continue;
         busy_ = false;
-        // The renderer read its hand-ins before it parsed the frame.
-        for (const std::string &p : handins_read_)
-            unlink(p.c_str());
-        handins_read_.clear();
         if (!send_frame(rec))
             return;
     }
@@ -473,8 +333,6 @@ int Slave::run()
             case FC_SETUP: on_setup(); break;
             case FC_JOB: on_job(); break;
             case FC_CANCEL: on_cancel(); break;
-            case FC_HANDOUT: on_handout(); break;
-            case FC_STATE: on_state(); break;
             case FC_PING: break;
             case FC_QUIT: return 0;
             case FC_MASTEREXIT: return 0;

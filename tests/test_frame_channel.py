@@ -5,7 +5,6 @@ the frame's rectangles as the Targa writer encodes them) and no image file; with
 Frame_Control it renders, frame by frame, only what the control lines ask for. Pixels are
 compared with a plain render of the same frames (OpenImageIO).
 """
-import csv
 import subprocess
 
 import numpy as np
@@ -23,22 +22,14 @@ def povray(args, tmp_path):
                           stdin=subprocess.DEVNULL)
 
 
-def records(path, with_files=False, handouts=None):
+def records(path, with_files=False):
     """[(fields, rects, payload)] of a frame channel file; with_files, (fields, rects,
-    payload, file): file is the image file a whole-image record carries (patch 0034), or None.
-    Hand-out records (FCSTATE, patch 0045) are appended to `handouts` as (frame, bytes)."""
+    payload, file): file is the image file a whole-image record carries (patch 0034), or None."""
     data = path.read_bytes()
     out, pos = [], 0
     while pos < len(data):
         nl = data.index(b"\n", pos)
         words = data[pos:nl].decode().split()
-        if words[:2] == ["FCSTATE", "1"]:
-            state = dict(w.split("=") for w in words[2:])
-            size = int(state["bytes"])
-            assert handouts is not None, words
-            handouts.append((int(state["frame"]), data[nl + 1:nl + 1 + size]))
-            pos = nl + 1 + size
-            continue
         assert words[:2] == ["FCFRAME", "1"], words
         fields, rects, i = {}, [], 2
         while i < len(words):
@@ -123,60 +114,6 @@ def test_frame_coherence_rectangle_left_out_then_back(tmp_path, options):
         assert_rectangles_equal(fields, rects, payload, ref)
 
 
-def stats_rows(path):
-    with open(path, newline="") as f:
-        return {int(r["frame"]): r for r in csv.DictReader(f)}
-
-
-@pytest.mark.parametrize("options", [["-A"], ["+A0.1", "+AM1"]], ids=["no-aa", "am1"])
-def test_frame_coherence_state_handed_to_another_process(tmp_path, options):
-    # fc-master moves a tile from one slave to another: the first process hands out the
-    # right half's stored blocks before its frame 3 (as frame 2 left them), the second,
-    # which rendered only the left half so far, takes them in for its frame 3, while the
-    # sphere crosses the right half. Its pixels must equal a full render's, and it must
-    # trace less of the right half than without the hand-over.
-    left, right = "0,0,80,120", "80,0,160,120"
-    fc = options + ["Frame_Coherence=on"]
-    giver = tmp_path / "giver"
-    giver.mkdir()
-    r = channel_render(giver, fc, f"render 1 {left} {right}\nrender 2 {left} {right}\n"
-                                  f"render 3 {left} handout={right}\n")
-    assert r.returncode == 0, r.stderr
-    handouts = []
-    records(giver / "channel", handouts=handouts)
-    assert [frame for frame, _ in handouts] == [2]
-    assert len(handouts[0][1]) > 0
-    (tmp_path / "state").write_bytes(handouts[0][1])
-
-    ref = reference(tmp_path, options)
-    traced = {}
-    for name, handin in (("taker", f" handin={tmp_path}/state"), ("fresh", "")):
-        d = tmp_path / name
-        d.mkdir()
-        r = channel_render(d, fc + [f"Frame_Coherence_Stats={d}/stats.csv"],
-                           f"render 1 {left}\nrender 2 {left}\nrender 3 {left} {right}{handin}\n")
-        assert r.returncode == 0, r.stderr
-        recs = records(d / "channel")
-        assert [int(f["frame"]) for f, _, _ in recs] == [1, 2, 3]
-        # Invariant: the frame equals a full render's, handed-over blocks included.
-        for fields, rects, payload in recs:
-            assert_rectangles_equal(fields, rects, payload, ref)
-        row = stats_rows(d / "stats.csv")[3]
-        traced[name] = int(row["traced"])
-        assert (int(row["blocks_handed_over"]) > 0) == bool(handin), row
-    assert traced["taker"] < traced["fresh"]
-
-
-def test_a_hand_in_that_cannot_be_read_costs_only_its_trace(tmp_path):
-    r = channel_render(tmp_path, ["-A", "Frame_Coherence=on"],
-                       f"render 1 0,0,80,120\nrender 2 0,0,160,120 handin={tmp_path}/missing\n")
-    assert r.returncode == 0, r.stderr
-    assert f"cannot read hand-in '{tmp_path}/missing'" in r.stdout + r.stderr
-    ref = reference(tmp_path, ["-A"])
-    for fields, rects, payload in records(tmp_path / "channel"):
-        assert_rectangles_equal(fields, rects, payload, ref)
-
-
 @pytest.mark.parametrize("options,ext", [([], ".tga"), (["+FC"], ".tga"), (["+FN"], ".png"),
                                          (["Frame_Coherence=on"], ".tga"),
                                          (["+FN", "Frame_Coherence=on"], ".png")],
@@ -223,8 +160,7 @@ def test_stop_and_end_of_file_end_the_render(tmp_path):
     ("render 2\nrender 1\n", "Frame control asked for frame 1, but frame 3 is next"),
     ("rendr 1\n", "Frame control: cannot understand 'rendr 1'"),
     ("render 1 10,10,5,20\n", "Frame control: bad rectangle '10,10,5,20'"),
-    ("render 1\nrender 2 handout=0,0,8\n", "Frame control: bad hand-out rectangle '0,0,8'"),
-], ids=["passed", "verb", "rectangle", "handout"])
+], ids=["passed", "verb", "rectangle"])
 def test_bad_control_lines_fail_with_a_message(tmp_path, control, message):
     r = channel_render(tmp_path, ["-A"], control)
     assert r.returncode != 0

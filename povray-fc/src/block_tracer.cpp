@@ -80,7 +80,6 @@ bool BlockTracer::Begin(std::uint32_t serial, int left, int top, int right, int 
     const FramePlan &plan = *plan_;
     endedActive_ = false;
     sameOrder_ = false;
-    handedOver_ = false;
     active_ = plan.mode != FramePlan::Mode::kIdle;
     if (!active_) return false;
     record_ = plan.mode == FramePlan::Mode::kRecord;
@@ -107,22 +106,7 @@ bool BlockTracer::Begin(std::uint32_t serial, int left, int top, int right, int 
     if (old_ && plan.everythingDirty) old_ = nullptr;
     if (!old_) return false;
 
-    // A block handed over by another renderer is tested against the changes since the frame
-    // it was rendered in there, and keeps no clearance (those are measured from this
-    // renderer's last frame's changes). From now on it is this renderer's own.
-    handedOver_ = old_->handedOver != 0;
-    const ChangeIndex *changes = plan.changes;
-    if (handedOver_) {
-        changes = old_->handedOver <= plan.handoverChanges.size() ? plan.handoverChanges[old_->handedOver - 1] : nullptr;
-        old_->handedOver = 0;
-        if (!changes) {
-            old_ = nullptr;
-            handedOver_ = false;
-            return false;
-        }
-    }
-    const std::uint32_t changeStamp = handedOver_ ? 0 : plan.changeStamp;
-    const bool nothingChanged = changes == nullptr || changes->Empty();
+    const bool nothingChanged = plan.changes == nullptr || plan.changes->Empty();
     if (nothingChanged) {
         plan.counters->reusedPixels += area;
         plan.counters->reusedSamples += old_->samples.size();
@@ -138,7 +122,7 @@ bool BlockTracer::Begin(std::uint32_t serial, int left, int top, int right, int 
     // are far from every change, which the cones around their segments show at once.
     const std::size_t n = old_->samples.size();
     if (!old_->fansBuilt) BuildRecordFans(*old_);
-    const BlockHulls reach = FindBlockHulls(old_->fans, *changes);
+    const BlockHulls reach = FindBlockHulls(old_->fans, *plan.changes);
     bool anyDirty = false;
     if (reach.Any() || old_->hasEverything) {
         // The block's cones reach a change (or a sample depends on everything): narrow
@@ -146,7 +130,7 @@ bool BlockTracer::Begin(std::uint32_t serial, int left, int top, int right, int 
         groupReach_.resize(old_->groupFans.size());
         groupReaches_.resize(old_->groupFans.size());
         for (std::size_t g = 0; g < groupReach_.size(); ++g) {
-            groupReach_[g] = FindGroupHulls(old_->groupFans[g], *changes, reach);
+            groupReach_[g] = FindGroupHulls(old_->groupFans[g], *plan.changes, reach);
             groupReaches_[g] = groupReach_[g].Any();
         }
         groupClasses_.resize(old_->groupFans.size());
@@ -167,9 +151,9 @@ bool BlockTracer::Begin(std::uint32_t serial, int left, int top, int right, int 
                     ++tested;
                     double clearance;
                     std::uint32_t untested;
-                    dirty = SampleIsDirty(s, *old_, *changes, groupReach_[s.group], clearance, untested);
-                    if (!dirty && changeStamp != 0 && clearance > 0.0) {
-                        s.clearStamp = changeStamp;
+                    dirty = SampleIsDirty(s, *old_, *plan.changes, groupReach_[s.group], clearance, untested);
+                    if (!dirty && plan.changeStamp != 0 && clearance > 0.0) {
+                        s.clearStamp = plan.changeStamp;
                         s.clearance = PackClearance(clearance, ~untested);
                     }
                 }
@@ -328,9 +312,7 @@ void BlockTracer::End() {
             changed_[2] = std::max(changed_[2], x);
             changed_[3] = std::max(changed_[3], y);
         }
-    }
-    if (!old_ || handedOver_) {
-        // Nothing to compare with in the front end's image: all of the block goes.
+    } else {
         changed_[0] = next_.left;
         changed_[1] = next_.top;
         changed_[2] = next_.right;

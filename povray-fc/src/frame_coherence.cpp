@@ -7,7 +7,6 @@
 
 #include <unistd.h>
 
-#include "povrayfc/block_handover.h"
 #include "povrayfc/change_detection.h"
 #include "povrayfc/effect_policy.h"
 #include "povrayfc/retrace_mask.h"
@@ -33,7 +32,6 @@ void FrameCoherence::Forget() {
     fullFrameSeconds_ = 0.0;
     store_.reset();
     haveLast_ = false;
-    past_.clear();
     policy_.Reset();
 }
 
@@ -77,7 +75,6 @@ void FrameCoherence::BeginFrame(bool enabled, const FrameSetup &setup, const voi
     maskArea_[3] = setup.bottom;
     tracedMask_ = maskDir_.empty() ? DirtyMask() : DirtyMask(std::max(1, setup.width), std::max(1, setup.height));
     changes_ = ChangeIndex();
-    handoverChanges_.clear();
     plan_ = FramePlan();
     plan_.counters = &counters_;
     plan_.tracedMask = maskDir_.empty() ? nullptr : &tracedMask_;
@@ -106,18 +103,8 @@ void FrameCoherence::BeginFrame(bool enabled, const FrameSetup &setup, const voi
         const std::string inexact = signature.inexactEffects.empty() ? "" : signature.inexactEffects.front();
         PlanFrame(setup, signature, effects, inexact);
         lastSetup_ = setup;
-        lastSignature_ = std::make_shared<const SceneSignature>(std::move(signature));
+        lastSignature_ = std::move(signature);
         haveLast_ = true;
-        past_.push_back(PastFrame{setup, lastSignature_});
-        if (past_.size() > kHandoverFrames) past_.pop_front();
-    }
-    {
-        // Hand-overs not taken by now are for a frame that could not use them.
-        std::lock_guard<std::mutex> lock(handInMutex_);
-        if (!handedIn_.empty() && current_.handoverRefused.empty())
-            current_.handoverRefused = "this frame re-uses nothing (" +
-                                       (current_.fullReason.empty() ? std::string("fc idle") : current_.fullReason) + ")";
-        handedIn_.clear();
     }
     plan_.store = store_.get();
     if (!plan_.store) plan_.mode = FramePlan::Mode::kIdle;
@@ -135,7 +122,7 @@ void FrameCoherence::PlanFrame(const FrameSetup &setup, const SceneSignature &si
                                const SceneEffects &effects, const std::string &inexact) {
     FrameChange change;
     if (haveLast_) {
-        change = CompareFrames(lastSetup_, *lastSignature_, setup, signature, effects.photons);
+        change = CompareFrames(lastSetup_, lastSignature_, setup, signature, effects.photons);
     } else {
         change.newSequence = true;
         change.fullReason = "first frame";
@@ -192,71 +179,7 @@ void FrameCoherence::PlanFrame(const FrameSetup &setup, const SceneSignature &si
         current_.changedHulls = changes_.HullCount();
         if (!changes_.Empty() && changes_.Bounds().IsFinite()) plan_.changeStamp = drift_.Begin(changes_.Bounds());
         plan_.drift = &drift_;
-        AdoptHandovers(setup, signature, effects.photons);
     }
-}
-
-bool FrameCoherence::HandOut(const std::vector<int> &rects, std::vector<char> &out, int &frame) const {
-    if (!enabled_ || !haveLast_ || !store_ || plan_.mode != FramePlan::Mode::kRecord) return false;
-    frame = lastSetup_.frameNumber;
-    WriteHandover(*store_, lastSetup_, rects, out);
-    return true;
-}
-
-void FrameCoherence::HandIn(std::vector<char> bytes) {
-    std::lock_guard<std::mutex> lock(handInMutex_);
-    handedIn_.push_back(std::move(bytes));
-}
-
-void FrameCoherence::AdoptHandovers(const FrameSetup &setup, const SceneSignature &signature, bool photons) {
-    std::vector<std::vector<char>> handedIn;
-    {
-        std::lock_guard<std::mutex> lock(handInMutex_);
-        handedIn.swap(handedIn_);
-    }
-    auto refuse = [&](const std::string &why) {
-        if (current_.handoverRefused.empty()) current_.handoverRefused = why;
-    };
-    // Each hand-over's changes are kept until the frame ends: reserve so that the plan's
-    // pointers into handoverChanges_ stay valid.
-    handoverChanges_.reserve(handedIn.size());
-    for (const std::vector<char> &bytes : handedIn) {
-        Handover handover;
-        std::string why;
-        if (!ReadHandover(bytes.data(), bytes.size(), handover, why)) {
-            refuse(why);
-            continue;
-        }
-        // This renderer's own parse of the hand-over's frame (a later frame is refused too:
-        // the records must come from before this frame).
-        const PastFrame *then = nullptr;
-        for (const PastFrame &p : past_)
-            if (p.setup.frameNumber == handover.frame) then = &p;
-        if (!then || handover.frame >= setup.frameNumber) {
-            refuse("frame " + std::to_string(handover.frame) + " is not among the last frames parsed here");
-            continue;
-        }
-        if (!handover.SameGrid(then->setup)) {
-            refuse("frame " + std::to_string(handover.frame) + " was rendered with other settings");
-            continue;
-        }
-        FrameChange change = CompareFrames(then->setup, *then->signature, setup, signature, photons);
-        if (change.newSequence || !change.fullReason.empty()) {
-            refuse("since frame " + std::to_string(handover.frame) + ": " + change.fullReason);
-            continue;
-        }
-        if (handoverChanges_.size() >= 255) {
-            refuse("too many hand-overs for one frame");
-            continue;
-        }
-        handoverChanges_.emplace_back(std::move(change.hulls), setup.gridResolution);
-        const std::uint8_t number = std::uint8_t(handoverChanges_.size());
-        for (HandedBlock &b : handover.blocks) {
-            b.record->handedOver = number;
-            if (store_->Adopt(b.serial, std::move(b.record))) ++current_.blocksHandedOver;
-        }
-    }
-    for (const ChangeIndex &c : handoverChanges_) plan_.handoverChanges.push_back(&c);
 }
 
 void FrameCoherence::EndFrame(std::uint64_t raysTraced) {

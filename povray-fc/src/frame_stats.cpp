@@ -27,15 +27,13 @@ std::string FrameStats::LogLine() const {
                   (unsigned long long)samplesReused, (unsigned long long)changedHulls, bookkeepingSeconds,
                   double(storeBytes) / 1048576.0);
     std::string line = buf;
-    if (blocksHandedOver) line += "; " + std::to_string(blocksHandedOver) + " blocks handed over";
-    if (!handoverRefused.empty()) line += "; hand-over refused: " + handoverRefused;
     if (!fullReason.empty()) line += "; full frame: " + fullReason;
     return line;
 }
 
 std::string FrameStats::CsvHeader() {
     return "frame,clock,coherent,full_reason,pixels,traced,reused,changed_hulls,samples_traced,"
-           "samples_reused,rays,bookkeeping_s,store_bytes,render_s,samples_tested,samples_cleared,blocks_handed_over";
+           "samples_reused,rays,bookkeeping_s,store_bytes,render_s,samples_tested,samples_cleared";
 }
 
 std::string FrameStats::CsvRow() const {
@@ -44,7 +42,7 @@ std::string FrameStats::CsvRow() const {
     row << frame << ',' << clock << ',' << (coherent ? 1 : 0) << ',' << CsvQuoted(fullReason)
         << ',' << pixels << ',' << traced << ',' << reused << ',' << changedHulls << ',' << samplesTraced << ',' << samplesReused
         << ',' << rays << ',' << bookkeepingSeconds << ',' << storeBytes << ',' << renderSeconds << ','
-        << samplesTested << ',' << samplesCleared << ',' << blocksHandedOver;
+        << samplesTested << ',' << samplesCleared;
     return row.str();
 }
 

@@ -37,8 +37,7 @@ class BlockTracer {
     bool Begin(std::uint32_t serial, int left, int top, int right, int bottom);
     void StoredPixel(int x, int y, float rgbft[5]) const;
     // After Begin() returned true: the front end already holds this block's pixels.
-    // (Not for a block handed over by another renderer: its pixels were never sent here.)
-    bool StoredBlockIsShown() const { return plan_->skipStoredBlocks && !handedOver_; }
+    bool StoredBlockIsShown() const { return plan_->skipStoredBlocks; }
 
     // The stored colour of the clean sample at exactly (x, y), kept for this frame too.
     // False when there is none: the caller traces the sample.
@@ -56,7 +55,7 @@ class BlockTracer {
     bool ChangedRect(int &left, int &top, int &right, int &bottom) const;
     // After End(): the block was under frame coherence and the front end keeps its image, so
     // it needs only the pixels ChangedRect and PixelChanged report (End() ends Active()).
-    bool SendOnlyChanged() const { return endedActive_ && plan_->skipStoredBlocks && !handedOver_; }
+    bool SendOnlyChanged() const { return endedActive_ && plan_->skipStoredBlocks; }
     // After End(), with ChangedRect: how many pixels changed colour, and whether (x, y) did.
     // Where they are few and scattered, sending them one by one costs less than their
     // rectangle (a reflection and a shadow of a moving object change pixels far apart).
@@ -88,7 +87,6 @@ class BlockTracer {
     const FramePlan *plan_;
     bool active_ = false;   // this block is under fc (mode != kIdle)
     bool endedActive_ = false;  // End() ended a block under fc (SendOnlyChanged)
-    bool handedOver_ = false;   // old_ came from another renderer (block_handover.h)
     bool record_ = false;   // mode kRecord: samples and segments are kept
     std::uint32_t serial_ = 0;
     BlockRecord *old_ = nullptr;             // the stored record, when it may be reused from

@@ -14,11 +14,8 @@
 
 #include <chrono>
 #include <cstdint>
-#include <deque>
 #include <memory>
-#include <mutex>
 #include <string>
-#include <vector>
 
 #include "povrayfc/change_index.h"
 #include "povrayfc/dirty_mask.h"
@@ -56,21 +53,6 @@ class FrameCoherence {
     // The statistics of the last finished frame (for tests and tools).
     const FrameStats &LastStats() const { return last_; }
 
-    // Hand-over of a tile's state between renderers (block_handover.h). Both between frames,
-    // from the front end (the render threads are idle).
-    // The stored blocks meeting `rects` (x0, y0, x1, y1, ... half-open) as the last frame left
-    // them, appended to `out`; `frame` is that frame. False (nothing written) when there is
-    // no such state: fc off, no frame yet, or a frame kept as pixels only.
-    bool HandOut(const std::vector<int> &rects, std::vector<char> &out, int &frame) const;
-    // Blocks handed out by another renderer, for the next frame: taken into empty slots
-    // when this renderer parsed the frame they come from and the changes since can be
-    // tested (see BeginFrame); refused otherwise (the statistics say why).
-    void HandIn(std::vector<char> bytes);
-
-    // Frames whose signatures are kept for hand-overs: a hand-over older than this many
-    // frames is refused.
-    static constexpr std::size_t kHandoverFrames = 16;
-
   private:
     FrameCoherence() = default;
 
@@ -79,24 +61,12 @@ class FrameCoherence {
     static void CheckMemory(const FrameSetup &setup);
     void PlanFrame(const FrameSetup &setup, const SceneSignature &signature, const SceneEffects &effects,
                    const std::string &inexact);
-    // Takes the blocks handed in for this coherent frame (PlanFrame): each hand-over's
-    // changes since its frame go into handoverChanges_.
-    void AdoptHandovers(const FrameSetup &setup, const SceneSignature &signature, bool photons);
 
     // The last frame parsed with fc on (kept while recording is paused, to see when a
     // frame can be coherent again).
     bool haveLast_ = false;
     FrameSetup lastSetup_;
-    std::shared_ptr<const SceneSignature> lastSignature_;
-    // The last kHandoverFrames frames parsed with fc on, for hand-overs (oldest first).
-    struct PastFrame {
-        FrameSetup setup;
-        std::shared_ptr<const SceneSignature> signature;
-    };
-    std::deque<PastFrame> past_;
-    std::mutex handInMutex_;
-    std::vector<std::vector<char>> handedIn_;  // bytes waiting for the next frame
-    std::vector<ChangeIndex> handoverChanges_;
+    SceneSignature lastSignature_;
 
     std::unique_ptr<SampleStore> store_;
     ChangeIndex changes_;

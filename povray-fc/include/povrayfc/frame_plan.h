@@ -5,7 +5,6 @@
 
 #include <atomic>
 #include <cstdint>
-#include <vector>
 
 #include "povrayfc/change_drift.h"
 #include "povrayfc/change_index.h"
@@ -43,9 +42,6 @@ struct FramePlan {
     // none is kept or trusted this frame), and how far the changes moved since each.
     std::uint32_t changeStamp = 0;
     const ChangeDrift *drift = nullptr;
-    // For blocks another renderer handed over (BlockRecord::handedOver = n): the changes
-    // between the frame they were rendered in and this one, handoverChanges[n - 1].
-    std::vector<const ChangeIndex *> handoverChanges;
     SampleStore *store = nullptr;
     FrameCounters *counters = nullptr;
     DirtyMask *tracedMask = nullptr;   // pixels traced this frame, when a mask is wanted

@@ -25,10 +25,6 @@ struct FrameStats {
     double bookkeepingSeconds = 0.0;  // change detection and statistics, outside the render threads
     std::uint64_t storeBytes = 0;     // stored samples, segments and pixels
     double renderSeconds = 0.0;       // wall time from fc's frame start to its end (tracing)
-    // Blocks another renderer handed over for this frame (block_handover.h) and taken, and
-    // why one was not taken (empty when none was refused).
-    std::uint64_t blocksHandedOver = 0;
-    std::string handoverRefused;
 
     // One human-readable line for the render log.
     std::string LogLine() const;

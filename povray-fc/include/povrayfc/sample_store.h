@@ -73,10 +73,6 @@ struct BlockRecord {
     std::vector<BlockFans> groupFans;
     bool fansBuilt = false;
     bool hasEverything = false; // a sample depends on everything (any change dirties it)
-    // Handed over by another renderer (block_handover.h) for this frame: 1 + the number of
-    // the changes it is tested against (FramePlan::handoverChanges). Its pixels were never
-    // sent to this renderer's front end. 0: made here.
-    std::uint8_t handedOver = 0;
 
     static constexpr int kGroupPixels = 8;
 
@@ -123,13 +119,6 @@ class SampleStore {
     // Replaces block `serial`'s record (ignored out of range).
     void Put(std::size_t serial, std::unique_ptr<BlockRecord> record) {
         if (serial < blocks_.size()) blocks_[serial] = std::move(record);
-    }
-    // Takes a record handed over by another renderer into an empty slot: false (and the
-    // record dropped) when this renderer holds that block already (its own is newer).
-    bool Adopt(std::size_t serial, std::unique_ptr<BlockRecord> record) {
-        if (serial >= blocks_.size() || blocks_[serial]) return false;
-        blocks_[serial] = std::move(record);
-        return true;
     }
     void Clear() {
         for (auto &b : blocks_) b.reset();
