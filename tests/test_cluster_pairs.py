@@ -3,6 +3,7 @@
 On the emulated cluster as root (as test_newton_table.py), else on a private local PVM.
 A renderer that changes pixels must make it fail, naming the run.
 """
+import json
 import re
 import shutil
 import subprocess
@@ -80,3 +81,22 @@ def test_cpu_accounting_names_each_program_on_each_processor(tmp_path):
         assert cpus == len(lines[0].splitlines())
         assert abs(int(floor.group(1)) - busy_total / cpus) <= 1, done.stdout
         assert int(floor.group(1)) <= int(head.group(1)) * 1.1 + 2, done.stdout
+
+
+def test_another_ini_and_fewer_frames(tmp_path):
+    # The runs render the INI and the number of frames asked for, not newton-table's.
+    hd = TOP / "scenes" / "newton" / "newton-hd.ini"
+    done = run(tmp_path, "--ini", str(hd), "--frames", "3")
+    assert done.returncode == 0, done.stdout + done.stderr
+    for side in ("A1", "B1", "A2", "B2"):
+        stats = json.loads((tmp_path / "out" / f"c8-{side}" / "stats.json").read_text())
+        assert stats["scene"] == str(hd) and stats["frames_rendered"] == 3, stats
+
+
+@pytest.mark.parametrize("extra,message", [
+    (["--frames", "46"], "--frames 46: the INI has 45"),
+    (["--ini", "/no/such.ini"], "--ini /no/such.ini: no such file"),
+], ids=["frames", "ini"])
+def test_bad_ini_or_frames_are_refused(tmp_path, extra, message):
+    done = run(tmp_path, *extra)
+    assert done.returncode == 2 and message in done.stderr, done.stderr
