@@ -86,6 +86,61 @@ def load_rgb(path, pixel_type="uint8"):
     return np.asarray(pixels)
 
 
+def files_below(top):
+    """Every file below top (paths)."""
+    found = set()
+    for root, _, names in os.walk(top):
+        found.update(os.path.join(root, name) for name in names)
+    return found
+
+
+def renderers_and_coordinators():
+    """Lines "pid FC_TEST_MARK cmdline" of the live povray and fc-* processes."""
+    lines = []
+    for name in os.listdir("/proc"):
+        if not name.isdigit():
+            continue
+        cmdline = coordinator_cmdline(int(name))
+        if "povray" not in cmdline and "fc-" not in cmdline:
+            continue
+        try:
+            with open("/proc/%s/environ" % name, "rb") as f:
+                env = f.read().split(b"\0")
+        except OSError:
+            continue
+        mark = next((v.decode(errors="replace") for v in env
+                     if v.startswith(MARK_VAR.encode() + b"=")), "-")
+        lines.append("%s %s %s" % (name, mark, cmdline[:300]))
+    return lines
+
+
+@pytest.fixture(autouse=True)
+def scenes_stay_as_checked_out():
+    """A renderer given no output name writes its frames into its working directory, which is
+    the checkout's scenes for the coordinator tests. A test after which a file appeared there
+    fails at its teardown, naming the file and what still runs (a renderer left over from an
+    earlier test carries that test's FC_TEST_MARK); the file is removed, so that later tests,
+    which copy the scenes, see them as checked out."""
+    scenes = os.path.join(TOP, "scenes")
+    before = files_below(scenes)
+    yield
+    added = sorted(files_below(scenes) - before)
+    if not added:
+        return
+    described = []
+    for path in added:
+        try:
+            st = os.stat(path)
+            described.append("%s (%d bytes, written %s)" % (
+                path, st.st_size, time.strftime("%H:%M:%S", time.localtime(st.st_mtime))))
+            os.unlink(path)
+        except OSError as e:
+            described.append("%s (%s)" % (path, e))
+    pytest.fail("written into the checkout's scenes: %s; now %s; still running:\n%s" % (
+        ", ".join(described), time.strftime("%H:%M:%S"),
+        "\n".join(renderers_and_coordinators()) or "(none)"))
+
+
 # What fc-master keeps in an output directory besides the frames.
 FC_MASTER_FILES = {".fc-master", "preview"}
 
