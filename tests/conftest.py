@@ -15,6 +15,8 @@ import uuid
 import numpy as np
 import pytest
 
+from fcutil import files_below
+
 TOP = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 BIN = os.path.join(TOP, "build", "bin")
 COORDINATOR_SCENES = os.path.join(TOP, "scenes", "coordinator-test")
@@ -86,14 +88,6 @@ def load_rgb(path, pixel_type="uint8"):
     return np.asarray(pixels)
 
 
-def files_below(top):
-    """Every file below top (paths)."""
-    found = set()
-    for root, _, names in os.walk(top):
-        found.update(os.path.join(root, name) for name in names)
-    return found
-
-
 def renderers_and_coordinators():
     """Lines "pid FC_TEST_MARK cmdline" of the live povray and fc-* processes."""
     lines = []
@@ -124,7 +118,7 @@ def scenes_stay_as_checked_out():
     scenes = os.path.join(TOP, "scenes")
     before = files_below(scenes)
     yield
-    added = sorted(files_below(scenes) - before)
+    added = [os.path.join(scenes, f) for f in sorted(files_below(scenes) - before)]
     if not added:
         return
     described = []

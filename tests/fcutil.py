@@ -31,6 +31,12 @@ def render(binary, scene, out_file, *options, cwd=None, timeout=600, threads=Non
                           text=True, timeout=timeout, stdin=subprocess.DEVNULL, env=env)
 
 
+def files_below(top):
+    """Every file below the directory top, as paths relative to it."""
+    top = Path(top)
+    return {p.relative_to(top).as_posix() for p in top.rglob("*") if p.is_file()}
+
+
 def read_pixels(path):
     """Pixels of an image file as a uint8 array (height, width, channels), via OpenImageIO."""
     inp = oiio.ImageInput.open(str(path))

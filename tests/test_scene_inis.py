@@ -10,17 +10,12 @@ import subprocess
 
 import pytest
 
-from fcutil import BIN, POVRAY_FC, SCENES, read_pixels
+from fcutil import BIN, POVRAY_FC, SCENES, files_below, read_pixels
 
 # INIs a user renders by hand; each documents its command.
 DOCUMENTED = ["demo/demo.ini", "newton/newton.ini", "newton/newton-hd.ini", "bounce/bounce.ini"]
 # Appended to the documented command (later options win): small, three frames.
 SMALL = ["+W64", "+H48", "+SF1", "+EF3", "-V"]
-
-
-def files_under(top):
-    """Every file below top, as paths relative to it."""
-    return sorted(p.relative_to(top).as_posix() for p in top.rglob("*") if p.is_file())
 
 
 def documented_command(ini):
@@ -59,7 +54,7 @@ def test_documented_command_works_in_another_checkout(ini, tmp_path):
     shutil.copytree(SCENES, other / "scenes")
     (other / "build").mkdir()
     (other / "build" / "bin").symlink_to(BIN)
-    copied = files_under(other / "scenes")
+    copied = files_below(other / "scenes")
     done = subprocess.run(["sh", "-ec", command + " " + " ".join(SMALL)], cwd=other,
                           capture_output=True, text=True, timeout=300,
                           stdin=subprocess.DEVNULL)
@@ -85,4 +80,4 @@ def test_documented_command_works_in_another_checkout(ini, tmp_path):
         assert pa.shape == (48, 64, 3) and (pa == pb).all(), a.name
     # Nothing was written next to the copied scenes (compared with the copy itself, so that
     # what another test left in the original tree is not blamed on this command).
-    assert files_under(other / "scenes") == copied
+    assert files_below(other / "scenes") == copied
