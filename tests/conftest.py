@@ -48,21 +48,30 @@ def master_with_failing_image_writer(tmp_path):
     return bindir / "fc-master"
 
 
+def process_mark(pid):
+    """The FC_TEST_MARK in a process's environment: None when it has none, or is gone."""
+    try:
+        with open("/proc/%d/environ" % pid, "rb") as f:
+            env = f.read().split(b"\0")
+    except OSError:
+        return None
+    prefix = MARK_VAR.encode() + b"="
+    return next((v[len(prefix):].decode(errors="replace") for v in env if v.startswith(prefix)),
+                None)
+
+
 def coordinator_marked_pids(mark):
     """Pids of live processes whose environment carries FC_TEST_MARK=mark."""
-    needle = ("%s=%s" % (MARK_VAR, mark)).encode()
     pids = []
     for name in os.listdir("/proc"):
-        if not name.isdigit() or int(name) == os.getpid():
+        if not name.isdigit() or int(name) == os.getpid() or process_mark(int(name)) != mark:
             continue
         try:
-            with open("/proc/%s/environ" % name, "rb") as f:
-                env = f.read().split(b"\0")
             with open("/proc/%s/stat" % name) as f:
                 state = f.read().rsplit(")", 1)[1].split()[0]
         except OSError:
             continue
-        if needle in env and state != "Z":
+        if state != "Z":
             pids.append(int(name))
     return pids
 
@@ -95,16 +104,8 @@ def renderers_and_coordinators():
         if not name.isdigit():
             continue
         cmdline = coordinator_cmdline(int(name))
-        if "povray" not in cmdline and "fc-" not in cmdline:
-            continue
-        try:
-            with open("/proc/%s/environ" % name, "rb") as f:
-                env = f.read().split(b"\0")
-        except OSError:
-            continue
-        mark = next((v.decode(errors="replace") for v in env
-                     if v.startswith(MARK_VAR.encode() + b"=")), "-")
-        lines.append("%s %s %s" % (name, mark, cmdline[:300]))
+        if "povray" in cmdline or "fc-" in cmdline:
+            lines.append("%s %s %s" % (name, process_mark(int(name)) or "-", cmdline[:300]))
     return lines
 
 
