@@ -25,14 +25,16 @@ SRC_CACHE ?= $(HOME)/.cache/povray-fc/debian-source
 POV_DSC   := $(SRC_CACHE)/povray_3.7.0.10-2.dsc
 POV_TREE  := $(BUILD)/povray
 
-# Our own code: the fc engine library, built with CMake, unit-tested with ctest.
-FC_BUILD  := $(BUILD)/povray-fc
-FC_LIB    := $(FC_BUILD)/libpovrayfc.a
-FC_MASK_PLUGIN := $(FC_BUILD)/povrayfc-mask.so
-# SDL loaded on demand (povray-fc/sdl/): linked whole and before POV-Ray's -lSDL, so the
-# linker's --as-needed (gcc's default here) drops libSDL from the binary.
-FC_SDL_LIB := $(FC_BUILD)/libpovrayfc-sdl.a
-FC_SOURCES := $(shell find $(TOP)/povray-fc -type f \( -name '*.cpp' -o -name '*.c' -o -name '*.h' -o -name 'CMakeLists.txt' \) 2>/dev/null)
+# Our own libraries (CMakeLists.txt): the fc engine (povray-fc/) and the speed-ups that are
+# not frame coherence (speedups/), built with CMake before POV-Ray, unit-tested with ctest.
+LIB_BUILD := $(BUILD)/libs
+FC_LIB    := $(LIB_BUILD)/povray-fc/libpovrayfc.a
+FC_MASK_PLUGIN := $(LIB_BUILD)/povray-fc/povrayfc-mask.so
+SPEEDUPS_LIB := $(LIB_BUILD)/speedups/libspeedups.a
+# SDL loaded on demand (speedups/sdl_on_demand.c): linked whole and before POV-Ray's -lSDL,
+# so the linker's --as-needed (gcc's default here) drops libSDL from the binary.
+SPEEDUPS_SDL_LIB := $(LIB_BUILD)/speedups/libspeedups-sdl.a
+LIB_SOURCES := $(TOP)/CMakeLists.txt $(shell find $(TOP)/povray-fc $(TOP)/speedups -type f \( -name '*.cpp' -o -name '*.c' -o -name '*.h' -o -name 'CMakeLists.txt' \) 2>/dev/null)
 
 PATCHES   := $(TOP)/patches/series $(wildcard $(TOP)/patches/*.patch)
 # Files our patches add to POV-Ray: unix/prebuild.sh lists the sources in the
@@ -55,7 +57,8 @@ CCACHE_PATH := /usr/lib/ccache
 DEB_FLAGS  = DEB_BUILD_MAINT_OPTIONS=hardening=+all dpkg-buildflags --get
 strip_map  = $(filter-out -ffile-prefix-map=%,$(1))
 POV_CXXFLAGS  := $(call strip_map,$(shell $(DEB_FLAGS) CXXFLAGS 2>/dev/null)) -O3
-POV_CPPFLAGS  := $(shell $(DEB_FLAGS) CPPFLAGS 2>/dev/null) -I$(TOP)/povray-fc/include
+# Our headers: the engine's as "povrayfc/NAME.h", the other folders' as "FOLDER/NAME.h".
+POV_CPPFLAGS  := $(shell $(DEB_FLAGS) CPPFLAGS 2>/dev/null) -I$(TOP)/povray-fc/include -I$(TOP)
 POV_LDFLAGS   := $(shell $(DEB_FLAGS) LDFLAGS 2>/dev/null)
 COMPILED_BY   := povray-fc (frame-coherent POV-Ray, built from Debian povray $(POV_DEB_VERSION))
 
@@ -104,13 +107,13 @@ $(STAMPS)/patched: $(STAMPS)/unpacked $(PATCHES)
 # Flags (and added files) that, when changed, must re-run prebuild and configure.
 $(STAMPS)/configure-args: FORCE | deps
 	@mkdir -p $(STAMPS)
-	@echo 'g++ via $(CCACHE_PATH) | $(POV_CXXFLAGS) | $(POV_CPPFLAGS) | $(POV_LDFLAGS) | $(FC_LIB) | $(FC_SDL_LIB) | $(COMPILED_BY) | $(PATCH_NEW_FILES)' > $@.new
+	@echo 'g++ via $(CCACHE_PATH) | $(POV_CXXFLAGS) | $(POV_CPPFLAGS) | $(POV_LDFLAGS) | $(FC_LIB) $(SPEEDUPS_LIB) | $(SPEEDUPS_SDL_LIB) | $(COMPILED_BY) | $(PATCH_NEW_FILES)' > $@.new
 	@if cmp -s $@.new $@; then rm $@.new; else mv $@.new $@; fi
 
 # Configure once per set of flags. Our patches never touch the build system (our
 # code is a separate library), so a patch change does not re-run configure.
 # configure links its test programs with LIBS, so our library must exist first.
-$(STAMPS)/configured: $(STAMPS)/unpacked $(STAMPS)/configure-args | $(STAMPS)/patched $(FC_LIB) $(FC_SDL_LIB)
+$(STAMPS)/configured: $(STAMPS)/unpacked $(STAMPS)/configure-args | $(STAMPS)/patched $(FC_LIB) $(SPEEDUPS_LIB) $(SPEEDUPS_SDL_LIB)
 	cd $(POV_TREE)/unix && ./prebuild.sh >$(BUILD)/prebuild.log 2>&1 \
 	  || { echo "make: unix/prebuild.sh failed, see $(BUILD)/prebuild.log" >&2; exit 1; }
 	cd $(POV_TREE) && PATH=$(CCACHE_PATH):$$PATH ./configure --prefix=/usr --sysconfdir=/etc \
@@ -118,36 +121,41 @@ $(STAMPS)/configured: $(STAMPS)/unpacked $(STAMPS)/configure-args | $(STAMPS)/pa
 	  --with-boost-thread=boost_thread \
 	  CC=gcc CXX=g++ \
 	  COMPILED_BY="$(COMPILED_BY)" \
-	  CXXFLAGS="$(POV_CXXFLAGS)" CPPFLAGS="$(POV_CPPFLAGS)" LDFLAGS="$(POV_LDFLAGS) -Wl,--whole-archive $(FC_SDL_LIB) -Wl,--no-whole-archive" \
-	  LIBS="$(FC_LIB)" >$(BUILD)/configure.log 2>&1 \
+	  CXXFLAGS="$(POV_CXXFLAGS)" CPPFLAGS="$(POV_CPPFLAGS)" LDFLAGS="$(POV_LDFLAGS) -Wl,--whole-archive $(SPEEDUPS_SDL_LIB) -Wl,--no-whole-archive" \
+	  LIBS="$(FC_LIB) $(SPEEDUPS_LIB)" >$(BUILD)/configure.log 2>&1 \
 	  || { echo "make: configure failed, see $(BUILD)/configure.log" >&2; exit 1; }
 	touch $@
 
-# --- our library -------------------------------------------------------------
+# --- our libraries -----------------------------------------------------------
 
-$(FC_BUILD)/CMakeCache.txt: $(TOP)/povray-fc/CMakeLists.txt | deps
-	cmake -S $(TOP)/povray-fc -B $(FC_BUILD) -DCMAKE_BUILD_TYPE=Release \
-	  -DCMAKE_CXX_COMPILER_LAUNCHER=ccache \
+$(LIB_BUILD)/CMakeCache.txt: $(TOP)/CMakeLists.txt | deps
+	cmake -S $(TOP) -B $(LIB_BUILD) -DCMAKE_BUILD_TYPE=Release \
+	  -DCMAKE_C_COMPILER_LAUNCHER=ccache -DCMAKE_CXX_COMPILER_LAUNCHER=ccache \
 	  -DCMAKE_CXX_FLAGS="$(POV_CXXFLAGS) $(filter-out -I%,$(POV_CPPFLAGS))" >/dev/null
 
-$(FC_LIB): $(FC_BUILD)/CMakeCache.txt $(FC_SOURCES)
-	cmake --build $(FC_BUILD) -j$(JOBS) --target povrayfc
+# One CMake build: its targets share the build directory, so they are built in turn.
+$(FC_LIB): $(LIB_BUILD)/CMakeCache.txt $(LIB_SOURCES)
+	cmake --build $(LIB_BUILD) -j$(JOBS) --target povrayfc
 	touch $@
 
-$(FC_SDL_LIB): $(FC_BUILD)/CMakeCache.txt $(FC_SOURCES)
-	cmake --build $(FC_BUILD) -j$(JOBS) --target povrayfc-sdl
+$(SPEEDUPS_LIB): $(LIB_BUILD)/CMakeCache.txt $(LIB_SOURCES) | $(FC_LIB)
+	cmake --build $(LIB_BUILD) -j$(JOBS) --target speedups
+	touch $@
+
+$(SPEEDUPS_SDL_LIB): $(LIB_BUILD)/CMakeCache.txt $(LIB_SOURCES) | $(SPEEDUPS_LIB)
+	cmake --build $(LIB_BUILD) -j$(JOBS) --target speedups-sdl
 	touch $@
 
 # Frame_Coherence_Mask's writer, loaded from beside the binary.
-$(BIN)/povrayfc-mask.so: $(FC_BUILD)/CMakeCache.txt $(FC_SOURCES)
-	cmake --build $(FC_BUILD) -j$(JOBS) --target povrayfc-mask
+$(BIN)/povrayfc-mask.so: $(LIB_BUILD)/CMakeCache.txt $(LIB_SOURCES) | $(SPEEDUPS_SDL_LIB)
+	cmake --build $(LIB_BUILD) -j$(JOBS) --target povrayfc-mask
 	mkdir -p $(BIN) && cp $(FC_MASK_PLUGIN) $@
 
 # --- the binary --------------------------------------------------------------
 
-# POV-Ray's Makefiles do not know our library: relink when it is newer.
-$(BIN)/povray-fc: $(STAMPS)/patched $(STAMPS)/configured $(FC_LIB) $(FC_SDL_LIB) FORCE
-	@for lib in $(FC_LIB) $(FC_SDL_LIB); do \
+# POV-Ray's Makefiles do not know our libraries: relink when one is newer.
+$(BIN)/povray-fc: $(STAMPS)/patched $(STAMPS)/configured $(FC_LIB) $(SPEEDUPS_LIB) $(SPEEDUPS_SDL_LIB) FORCE
+	@for lib in $(FC_LIB) $(SPEEDUPS_LIB) $(SPEEDUPS_SDL_LIB); do \
 	  if [ -e $(POV_TREE)/unix/povray ] && [ $$lib -nt $(POV_TREE)/unix/povray ]; then rm $(POV_TREE)/unix/povray; fi; done
 	PATH=$(CCACHE_PATH):$$PATH $(MAKE) -C $(POV_TREE) -j$(JOBS) >$(BUILD)/povray-make.log 2>&1 \
 	  || { tail -30 $(BUILD)/povray-make.log >&2; echo "make: POV-Ray build failed, see $(BUILD)/povray-make.log" >&2; exit 1; }
@@ -160,9 +168,9 @@ FORCE:
 
 test: unit-test integration-test
 
-unit-test: $(FC_BUILD)/CMakeCache.txt | deps
-	cmake --build $(FC_BUILD) -j$(JOBS)
-	cd $(FC_BUILD) && ctest --output-on-failure
+unit-test: $(LIB_BUILD)/CMakeCache.txt | deps
+	cmake --build $(LIB_BUILD) -j$(JOBS)
+	cd $(LIB_BUILD) && ctest --output-on-failure
 
 integration-test: all
 	cd $(TOP) && $(PYTHON) -m pytest -q -p no:cacheprovider tests

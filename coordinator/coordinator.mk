@@ -28,6 +28,6 @@ $(IMAGE_WRITER_OBJ): $(TOP)/coordinator/image_writer_main.cpp $(TOP)/coordinator
 # POV-Ray's libraries depend on each other: one group. Its LIBS come from its configured Makefile.
 $(IMAGE_WRITER): $(IMAGE_WRITER_OBJ) $(BIN)/povray-fc
 	g++ $(POV_LDFLAGS) -Wl,--as-needed -pthread $(IMAGE_WRITER_OBJ) -o $@.tmp \
-	  -Wl,--start-group $(POV_TREE)/source/libpovray.a $(POV_TREE)/vfe/libvfe.a $(FC_LIB) -Wl,--end-group \
+	  -Wl,--start-group $(POV_TREE)/source/libpovray.a $(POV_TREE)/vfe/libvfe.a $(FC_LIB) $(SPEEDUPS_LIB) -Wl,--end-group \
 	  $$(sed -n 's/^LIBS = //p' $(POV_TREE)/unix/Makefile)
 	mv $@.tmp $@

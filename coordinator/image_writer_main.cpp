@@ -37,7 +37,7 @@
 #include "base/image/encoding.h"
 #include "base/image/image.h"
 #include "base/image/targa.h"
-#include "povrayfc/encode_memo.h"
+#include "speedups/encode_memo.h"
 
 #include "image_writer_protocol.h"
 

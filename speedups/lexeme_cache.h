@@ -24,8 +24,8 @@
 // matches), the same byte offset and pending pushed-back character, the same line number
 // and the same column counter (POV-Ray's error messages report it). Everything the
 // tokenizer's reading changes is in the stored end state.
-#ifndef POVRAYFC_LEXEME_CACHE_H
-#define POVRAYFC_LEXEME_CACHE_H
+#ifndef SPEEDUPS_LEXEME_CACHE_H
+#define SPEEDUPS_LEXEME_CACHE_H
 
 #include <cstddef>
 #include <cstdint>

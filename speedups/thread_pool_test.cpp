@@ -1,4 +1,4 @@
-#include "povrayfc/thread_pool.h"
+#include "speedups/thread_pool.h"
 
 #include <gtest/gtest.h>
 #include <pthread.h>

@@ -7,7 +7,7 @@
 
 #include <gtest/gtest.h>
 
-#include "povrayfc/encode_memo.h"
+#include "speedups/encode_memo.h"
 
 using namespace povrayfc;
 

@@ -1,6 +1,6 @@
 // ZeroedArray: a fixed-size array of zeros whose pages cost nothing until written.
-#ifndef POVRAYFC_ZEROED_ARRAY_H
-#define POVRAYFC_ZEROED_ARRAY_H
+#ifndef SPEEDUPS_ZEROED_ARRAY_H
+#define SPEEDUPS_ZEROED_ARRAY_H
 
 #include <cstddef>
 #include <cstdlib>

@@ -1,12 +1,23 @@
 // LexemeCache: see lexeme_cache.h.
-#include "povrayfc/lexeme_cache.h"
+#include "speedups/lexeme_cache.h"
 
 #include <atomic>
 #include <cstring>
 
-#include "povrayfc/parse_hasher.h"
-
 namespace povrayfc {
+
+namespace {
+
+// splitmix64's finaliser: every bit of the start reaches every bit of its bucket index.
+std::uint64_t Finalize(std::uint64_t x) {
+    x ^= x >> 30;
+    x *= 0xbf58476d1ce4e5b9ULL;
+    x ^= x >> 27;
+    x *= 0x94d049bb133111ebULL;
+    return x ^ (x >> 31);
+}
+
+}  // namespace
 
 bool LexemeCache::Store(const LexemeStart &start, Lexeme::Kind kind, int tokenId, double value, int tokenColumn,
                         const StreamState &end, int endColumn, const char *text, std::size_t textLength,
@@ -43,7 +54,7 @@ std::size_t LexemeCache::StartHash::operator()(const LexemeStart &s) const {
     h ^= static_cast<std::uint64_t>(s.state.lineno) * 0xc2b2ae3d27d4eb4fULL;
     h ^= static_cast<std::uint64_t>(static_cast<std::uint32_t>(s.state.pushedBack)) << 40;
     h ^= static_cast<std::uint64_t>(static_cast<std::uint32_t>(s.column)) << 20;
-    return static_cast<std::size_t>(HashFinalize64(h));
+    return static_cast<std::size_t>(Finalize(h));
 }
 
 std::uint64_t NewStreamSerial() {

@@ -1,5 +1,5 @@
 // PooledThread: threads kept across POV-Ray's tasks (thread_pool.h says why).
-#include "povrayfc/thread_pool.h"
+#include "speedups/thread_pool.h"
 
 #include <pthread.h>
 

@@ -13,8 +13,8 @@
 // its handle). A function must not throw (POV-Ray's thread functions catch everything;
 // one that escapes terminates the process, as on a thread of its own). Threads that wait
 // for work block at exit, which ends them; they are never destroyed.
-#ifndef POVRAYFC_THREAD_POOL_H
-#define POVRAYFC_THREAD_POOL_H
+#ifndef SPEEDUPS_THREAD_POOL_H
+#define SPEEDUPS_THREAD_POOL_H
 
 #include <cstddef>
 #include <functional>

@@ -1,5 +1,5 @@
 // EncodeMemo: the process-wide memo and its (re)initialisation.
-#include "povrayfc/encode_memo.h"
+#include "speedups/encode_memo.h"
 
 #include <cstring>
 

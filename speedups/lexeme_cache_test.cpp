@@ -4,7 +4,7 @@
 #include <set>
 #include <string>
 
-#include "povrayfc/lexeme_cache.h"
+#include "speedups/lexeme_cache.h"
 
 using povrayfc::Lexeme;
 using povrayfc::LexemeCache;

@@ -10,14 +10,14 @@
 //
 // Not thread-safe: the front end writes images from one thread; a call from another
 // thread than the one that last enabled the memo bypasses it.
-#ifndef POVRAYFC_ENCODE_MEMO_H
-#define POVRAYFC_ENCODE_MEMO_H
+#ifndef SPEEDUPS_ENCODE_MEMO_H
+#define SPEEDUPS_ENCODE_MEMO_H
 
 #include <cstddef>
 #include <cstdint>
 #include <thread>
 
-#include "povrayfc/zeroed_array.h"
+#include "speedups/zeroed_array.h"
 
 namespace povrayfc {
 

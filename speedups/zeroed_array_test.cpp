@@ -5,8 +5,8 @@
 
 #include <gtest/gtest.h>
 
-#include "povrayfc/encode_memo.h"
-#include "povrayfc/zeroed_array.h"
+#include "speedups/encode_memo.h"
+#include "speedups/zeroed_array.h"
 
 using namespace povrayfc;
 
