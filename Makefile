@@ -3,7 +3,7 @@
 #
 #   make deps   install every Debian package we need (root, idempotent)
 #   make        build build/bin/povray-fc (and later the coordinator)
-#   make test   build, then run unit and integration tests
+#   make test   build, then run the unit tests and patch checks, then the integration tests
 #   make demo   render a short animation into out/
 #   make clean  remove build/ and out/ (keeps the downloaded source cache)
 
@@ -34,7 +34,7 @@ SPEEDUPS_LIB := $(LIB_BUILD)/speedups/libspeedups.a
 # SDL loaded on demand (speedups/sdl_on_demand.c): linked whole and before POV-Ray's -lSDL,
 # so the linker's --as-needed (gcc's default here) drops libSDL from the binary.
 SPEEDUPS_SDL_LIB := $(LIB_BUILD)/speedups/libspeedups-sdl.a
-LIB_SOURCES := $(TOP)/CMakeLists.txt $(shell find $(TOP)/povray-fc $(TOP)/speedups -type f \( -name '*.cpp' -o -name '*.c' -o -name '*.h' -o -name 'CMakeLists.txt' \) 2>/dev/null)
+LIB_SOURCES := $(TOP)/CMakeLists.txt $(shell find $(TOP)/povray-fc $(TOP)/speedups $(TOP)/frame-channel -type f \( -name '*.cpp' -o -name '*.c' -o -name '*.h' -o -name 'CMakeLists.txt' \) 2>/dev/null)
 
 PATCHES   := $(TOP)/patches/series $(wildcard $(TOP)/patches/*.patch)
 # Files our patches add to POV-Ray: unix/prebuild.sh lists the sources in the
@@ -64,7 +64,7 @@ COMPILED_BY   := povray-fc (frame-coherent POV-Ray, built from Debian povray $(P
 
 PYTHON := /usr/bin/python3
 
-.PHONY: all deps test unit-test integration-test demo clean distclean
+.PHONY: all deps test fast-test unit-test patch-check integration-test demo clean distclean
 .DELETE_ON_ERROR:
 
 all: $(BIN)/povray-fc $(BIN)/povrayfc-mask.so coordinator
@@ -72,6 +72,18 @@ all: $(BIN)/povray-fc $(BIN)/povrayfc-mask.so coordinator
 # The PVM master and slave (coordinator/): fc-master and fc-slave in $(BIN).
 include $(TOP)/coordinator/coordinator.mk
 coordinator: | deps
+
+# Our code that includes POV-Ray's headers is compiled as POV-Ray compiles its vfe/ front end:
+# with that directory's configured compile command (automake's CXXCOMPILE: its defines,
+# include paths and flags, config.h), run there. $(call pov_compile,SOURCE,OBJECT)
+pov_compile = PATH=$(CCACHE_PATH):$$PATH $(MAKE) -s --no-print-directory -C $(POV_TREE)/vfe \
+  --eval='our-object: ; $$(CXXCOMPILE) -c -o $(2) $(1)' our-object
+
+# The renderer's frame channel and frame control (frame-channel/): libframechannel.a.
+include $(TOP)/frame-channel/frame-channel.mk
+
+# fc-image-writer (image-writer/), fc-master's helper that links POV-Ray.
+include $(TOP)/image-writer/image-writer.mk
 
 # Checks in a fraction of a second when everything is installed, so the build
 # targets run it first: on a fresh machine `make demo` or `make test` is all it takes.
@@ -153,11 +165,15 @@ $(BIN)/povrayfc-mask.so: $(LIB_BUILD)/CMakeCache.txt $(LIB_SOURCES) | $(SPEEDUPS
 
 # --- the binary --------------------------------------------------------------
 
-# POV-Ray's Makefiles do not know our libraries: relink when one is newer.
-$(BIN)/povray-fc: $(STAMPS)/patched $(STAMPS)/configured $(FC_LIB) $(SPEEDUPS_LIB) $(SPEEDUPS_SDL_LIB) FORCE
-	@for lib in $(FC_LIB) $(SPEEDUPS_LIB) $(SPEEDUPS_SDL_LIB); do \
+# POV-Ray's Makefiles do not know our libraries: relink when one is newer. The frame
+# channel's library needs the configured tree, so configure cannot link its test programs
+# with it: it joins the configured LIBS here.
+$(BIN)/povray-fc: $(STAMPS)/patched $(STAMPS)/configured $(FC_LIB) $(SPEEDUPS_LIB) $(SPEEDUPS_SDL_LIB) \
+  $(FRAME_CHANNEL_LIB) FORCE
+	@for lib in $(FC_LIB) $(SPEEDUPS_LIB) $(SPEEDUPS_SDL_LIB) $(FRAME_CHANNEL_LIB); do \
 	  if [ -e $(POV_TREE)/unix/povray ] && [ $$lib -nt $(POV_TREE)/unix/povray ]; then rm $(POV_TREE)/unix/povray; fi; done
-	PATH=$(CCACHE_PATH):$$PATH $(MAKE) -C $(POV_TREE) -j$(JOBS) >$(BUILD)/povray-make.log 2>&1 \
+	PATH=$(CCACHE_PATH):$$PATH $(MAKE) -C $(POV_TREE) -j$(JOBS) \
+	  LIBS="$(FRAME_CHANNEL_LIB) $$(sed -n 's/^LIBS = //p' $(POV_TREE)/unix/Makefile)" >$(BUILD)/povray-make.log 2>&1 \
 	  || { tail -30 $(BUILD)/povray-make.log >&2; echo "make: POV-Ray build failed, see $(BUILD)/povray-make.log" >&2; exit 1; }
 	mkdir -p $(BIN)
 	if ! cmp -s $(POV_TREE)/unix/povray $@; then cp $(POV_TREE)/unix/povray $@.tmp && mv $@.tmp $@; fi
@@ -166,7 +182,16 @@ FORCE:
 
 # --- tests and demo ----------------------------------------------------------
 
-test: unit-test integration-test
+# The fast tier first (unit tests and the patch series' checks: seconds), then the
+# integration tests (minutes).
+test: fast-test
+	$(MAKE) --no-print-directory integration-test
+
+fast-test: unit-test patch-check
+
+# Every patch a DEP-3 header and under 150 lines (scripts/check-patches).
+patch-check:
+	$(PYTHON) $(TOP)/scripts/check-patches
 
 unit-test: $(LIB_BUILD)/CMakeCache.txt | deps
 	cmake --build $(LIB_BUILD) -j$(JOBS)

@@ -8,8 +8,9 @@
 #include <cstdio>
 #include <cstring>
 
-#include "frame_record.h"
+#include "frame-channel/frame_record.h"
 #include "image_io.h"
+#include "image_writer.h"
 #include "povray.h"
 #include "util.h"
 
@@ -147,7 +148,7 @@ bool FrameAssembly::put(int index, const std::vector<Rect> &rects, const std::ve
     bool fits = encoding == format_.encoding || (floats && format_.pixels == PixelType::U8);
     if (!fits) {
         err = "the renderer sent " + encoding + " pixels for " + format_.name + " output (" +
-              format_.encoding + " expected): it lacks patch 0030 (frame channel output formats)";
+              format_.encoding + " expected): its frame channel predates the output formats";
         return false;
     }
     size_t per_pixel = bytes_per_pixel(encoding);
@@ -167,8 +168,7 @@ bool FrameAssembly::put(int index, const std::vector<Rect> &rects, const std::ve
     if (file_gamma > 0)
         p.file_gamma = file_gamma;
     if (floats && p.values.empty()) {
-        p.quantizer.reset(new Quantizer);
-        if (!p.quantizer->parse(data.data() + pixels * 12, data.size() - pixels * 12, err))
+        if (!parse_diffusion(data, pixels, p.diffusion, err))
             return false;
         p.values.assign(size_t(width_) * size_t(height_) * 3, 0.0f);
     }
@@ -209,8 +209,11 @@ bool FrameAssembly::write(int index, std::vector<uint8_t> &samples, bool &disk_f
         return false;
     }
     Pending &p = it->second;
-    if (!p.values.empty())
-        p.quantizer->dither(p.values, width_, height_, p.samples);
+    if (!p.values.empty() &&
+        !writer_dither(width_, height_, p.diffusion, p.values.data(), p.samples, err)) {
+        err = "diffusion dithering: " + err;
+        return false;
+    }
     std::vector<uint8_t> bytes;
     if (!p.file.empty())
         bytes.swap(p.file);

@@ -8,9 +8,9 @@
 // and the close checked and its size on disk compared with the encoded size, renamed to
 // POV-Ray's name for it, recorded in the output directory's journal (output_dir.h), and its
 // memory is freed. So a file under a final name is always complete, a full disk is an error
-// that says so, and the master holds only the frames in flight. Frames whose pixels were
-// dithered by diffusion come as unquantized values and are quantized here, once, over the
-// whole frame.
+// that says so, and the master holds only the frames in flight. Frames whose pixels are
+// dithered by diffusion come as unquantized values and are dithered once, over the whole
+// frame, by POV-Ray's own dither handler in fc-image-writer (image_writer.h).
 #pragma once
 
 #include <cstdint>
@@ -19,7 +19,7 @@
 #include <string>
 #include <vector>
 
-#include "dither.h"
+#include "frame-channel/frame_record.h"
 #include "output_dir.h"
 #include "output_format.h"
 #include "protocol.h"
@@ -78,7 +78,7 @@ private:
     struct Pending {
         std::vector<uint8_t> samples;           // width * height * 3 stored samples
         std::vector<float> values;              // diffusion dithering: unquantized, or empty
-        std::unique_ptr<Quantizer> quantizer;
+        Diffusion diffusion;                    // and how to dither them
         std::vector<uint8_t> file;              // POV-Ray's file of the whole frame, or empty
         double file_gamma = 0;                  // the gamma its file records (0: not said)
     };

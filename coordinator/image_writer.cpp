@@ -1,5 +1,5 @@
 // image_writer.cpp - talking to fc-image-writer (see image_writer.h; the protocol is in
-// image_writer_protocol.h).
+// image-writer/protocol.h).
 #include "image_writer.h"
 
 #include <fcntl.h>
@@ -10,7 +10,7 @@
 #include <cstring>
 #include <mutex>
 
-#include "image_writer_protocol.h"
+#include "image-writer/protocol.h"
 #include "util.h"
 
 namespace fc {
@@ -128,8 +128,10 @@ struct Helper {
         return true;
     }
 
-    bool encode(int width, int height, bool rle, double file_gamma, const uint8_t *rgb,
-                std::vector<uint8_t> &out, std::string &err)
+    // Send req and its payload, and take the answer into out, which may be at most max_reply
+    // bytes; false with err, after which the helper is not used again.
+    bool ask(const fc_image_writer::Request &req, const void *payload, size_t bytes,
+             size_t max_reply, std::vector<uint8_t> &out, std::string &err)
     {
         if (failed) {
             err = why;
@@ -140,19 +142,15 @@ struct Helper {
             return false;
         }
         double deadline = now() + kTimeout;
-        fc_image_writer::Request req = {kRequestMagic, width, height, rle ? 1 : 0,
-                                        float(file_gamma)};
         fc_image_writer::Reply head;
-        size_t bytes = size_t(width) * size_t(height) * 3;
-        if (!transfer(true, &req, sizeof req, deadline, err) ||
-            !transfer(true, const_cast<uint8_t *>(rgb), bytes, deadline, err) ||
+        if (!transfer(true, const_cast<fc_image_writer::Request *>(&req), sizeof req, deadline,
+                      err) ||
+            !transfer(true, const_cast<void *>(payload), bytes, deadline, err) ||
             !transfer(false, &head, sizeof head, deadline, err)) {
             fail(err);
             return false;
         }
-        // A Targa file is its pixels plus at most a byte per 128 of them and 1 KiB of header
-        // and footer; a message is short.
-        if (head.magic != kReplyMagic || head.size > bytes + bytes / 128 + 4096) {
+        if (head.magic != kReplyMagic || head.size > max_reply) {
             err = "fc-image-writer sent a malformed reply";
             fail(err);
             return false;
@@ -197,9 +195,32 @@ bool image_writer_present()
 bool writer_encode_targa(int width, int height, bool rle, double file_gamma, const uint8_t *rgb,
                          std::vector<uint8_t> &out, std::string &err)
 {
+    fc_image_writer::Request req = {kRequestMagic, fc_image_writer::kEncodeTarga, width, height,
+                                    rle ? 1 : 0, float(file_gamma), Diffusion()};
+    size_t bytes = size_t(width) * size_t(height) * 3;
     Helper &h = helper();
     std::lock_guard<std::mutex> lock(h.mutex);
-    return h.encode(width, height, rle, file_gamma, rgb, out, err);
+    // A Targa file is its pixels plus at most a byte per 128 of them and 1 KiB of header
+    // and footer; a message is short.
+    return h.ask(req, rgb, bytes, bytes + bytes / 128 + 4096, out, err);
+}
+
+bool writer_dither(int width, int height, const Diffusion &diffusion, const float *values,
+                   std::vector<uint8_t> &rgb, std::string &err)
+{
+    fc_image_writer::Request req = {kRequestMagic, fc_image_writer::kDither, width, height, 0,
+                                    0.0f, diffusion};
+    size_t samples = size_t(width) * size_t(height) * 3;
+    Helper &h = helper();
+    std::lock_guard<std::mutex> lock(h.mutex);
+    if (!h.ask(req, values, samples * sizeof(float), samples, rgb, err))
+        return false;
+    if (rgb.size() != samples) {
+        err = "fc-image-writer sent a malformed reply";
+        h.fail(err);
+        return false;
+    }
+    return true;
 }
 
 void stop_image_writer()

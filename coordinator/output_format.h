@@ -5,7 +5,7 @@
 // options, so a format on the command line or in an INI file given there wins. Supported:
 // Targa (+FT), RLE Targa (+FC), PNG (+FN, 5 to 16 bits per colour as POV-Ray stores them) and
 // OpenEXR (+FE, half floats, linear). The renderer's frame channel carries each format's
-// stored values (patch 0030), so the frames equal what one POV-Ray process writes.
+// stored values (the frame channel), so the frames equal what one POV-Ray process writes.
 #pragma once
 
 #include <string>
@@ -36,7 +36,7 @@ bool output_format(const ResolvedOptions &ini, OutputFormat &format, std::string
 // ".png", +FE for ".exr" (as POV-Ray compares them: lower case), else +FT.
 std::string format_from_name(const ResolvedOptions &ini);
 
-// The frame-channel encoding the renderer sends for these options (patch 0030): "rgbf" under
+// The frame-channel encoding the renderer sends for these options (the frame channel): "rgbf" under
 // diffusion dithering, else the format's own.
 std::string channel_encoding(const ResolvedOptions &ini, const OutputFormat &format);
 

@@ -233,14 +233,14 @@ bool probe_resolved_options(const std::string &renderer, const std::string &form
         return false;
     std::ifstream in(ini);
     if (!in) {
-        // Its exit and last line say why (a povray-fc without patch 0020, or a failure of
+        // Its exit and last line say why (a povray-fc without the frame channel, or a failure of
         // its own: seen once in CI, unexplained).
         std::string last;
         for (auto it = lines.rbegin(); it != lines.rend() && last.empty(); ++it)
             last = trim(*it);
         err = renderer + " wrote no resolved options (Create_Ini; " + describe_status(status) +
               (last.empty() ? std::string(", no output") : ", last line: " + last) +
-              "); fc-master needs povray-fc with the frame channel (patch 0020)";
+              "); fc-master needs povray-fc with the frame channel";
         return false;
     }
     std::string line;

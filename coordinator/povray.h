@@ -48,7 +48,7 @@ bool probe_scene(const std::string &renderer, const std::string &format,
 
 // POV-Ray's resolved options as its Create_Ini writes them (key -> value, quotes removed):
 // runs `renderer FORMAT options... +GI<ini> Frame_Channel=<a path that cannot be opened>`, which
-// writes the INI file and stops before anything runs (patch 0020 opens the channel first).
+// writes the INI file and stops before anything runs (the frame channel opens first).
 // A renderer without the frame channel writes none and is refused here.
 typedef std::map<std::string, std::string> ResolvedOptions;
 

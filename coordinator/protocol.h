@@ -15,6 +15,8 @@
 #include <string>
 #include <vector>
 
+#include "frame-channel/frame_record.h"     // Rect, and the FrameRecord a result carries
+
 namespace fc {
 
 enum Tag {
@@ -34,17 +36,6 @@ enum Tag {
 };
 
 const char *tag_name(int tag);
-
-struct Rect {
-    int x0 = 0, y0 = 0, x1 = 0, y1 = 0;
-    int width() const { return x1 - x0; }
-    int height() const { return y1 - y0; }
-    long area() const { return long(width()) * height(); }
-    bool operator==(const Rect &o) const
-    {
-        return x0 == o.x0 && y0 == o.y0 && x1 == o.x1 && y1 == o.y1;
-    }
-};
 
 struct Hello {
     std::string host;
@@ -74,18 +65,12 @@ struct JobMsg {
     int threads = 1;                    // POV-Ray work threads (+WT)
 };
 
-struct FrameResult {
+// The renderer's record of a frame (frame_record.h: its rectangles, pixels, file and
+// statistics), with the job it answers.
+struct FrameResult : FrameRecord {
     int job = 0;
-    int frame = 0;
-    std::vector<int> tiles;
-    std::vector<Rect> rects;
-    double rays = 0;                    // from POV-Ray's statistics (-1: none)
-    double parse_seconds = 0, trace_seconds = 0;
+    std::vector<int> tiles;             // the job's tiles, one per rectangle
     int fresh = 0;                      // the renderer's first frame (fc traced everything)
-    std::string encoding;               // "rgb8": 3 bytes a pixel; "rgbf": see dither.h
-    std::vector<uint8_t> data;          // the rectangles in order, rows top first
-    std::vector<uint8_t> file;          // a whole frame's image file as POV-Ray wrote it, or empty
-    double file_gamma = 0;              // the gamma POV-Ray's file records (0: not said)
 };
 
 struct Progress {

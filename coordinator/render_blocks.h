@@ -5,7 +5,7 @@
 // A tile edge that cuts a block makes the slaves on both sides trace all of it: with the
 // paper's 80-pixel tiles that is a fifth more rays. Under antialiasing method 1 a pixel
 // depends on the block grid (each block traces a border around itself), so the grid must stay
-// the one a single process uses. Under every other setting no pixel depends on it (patch 0003
+// the one a single process uses. Under every other setting no pixel depends on it (patch 0201
 // makes the shadow cache exact; see ../shared/notes/povray-internals.md, "Determinism"), and
 // a block size that divides the tile edge puts every block inside one tile.
 #pragma once

@@ -1,5 +1,5 @@
 // renderer.h - one povray-fc process, driven frame by frame through its frame control and
-// read through its frame channel (patches 0020, 0021).
+// read through its frame channel (frame-channel/ has both formats).
 //
 // The process is started at some frame of the animation and walks forward: before each frame
 // it waits for a control line, so one process renders many jobs (a frame and a set of
@@ -16,7 +16,8 @@
 #include <string>
 #include <vector>
 
-#include "frame_record.h"
+#include "frame-channel/control_line.h"
+#include "frame-channel/frame_record.h"
 #include "protocol.h"
 #include "util.h"
 

@@ -215,24 +215,16 @@ void Slave::feed_renderer()
 bool Slave::send_frame(const FrameRecord &rec)
 {
     FrameResult fr;
+    static_cast<FrameRecord &>(fr) = rec;
     fr.job = current_.job;
-    fr.frame = rec.frame;
     fr.tiles = current_.tiles;
-    fr.rects = rec.rects;
-    fr.rays = rec.rays;
-    fr.parse_seconds = rec.parse_seconds;
-    fr.trace_seconds = rec.trace_seconds;
     fr.fresh = renderer_.fresh_frame() ? 1 : 0;
-    fr.encoding = rec.encoding;
-    fr.data = rec.data;
-    fr.file = rec.file;
-    fr.file_gamma = rec.file_gamma;
     int r = send_msg(master_, FC_FRAME, fr);
     if (r < 0) {
         g_stop = 1;     // the master is unreachable
         return false;
     }
-    debug_log("sent frame %d of job %d", rec.frame, current_.job);
+    debug_log("sent frame %d of job %d", fr.frame, current_.job);
     return true;
 }
 

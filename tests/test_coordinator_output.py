@@ -394,7 +394,7 @@ FORMATS = {
 
 
 # Frame division assembles tiles and encodes them with OpenImageIO; sequence division gets
-# whole frames, stored as the file POV-Ray's writer made of each (patch 0034; OpenEXR's are
+# whole frames, stored as the file POV-Ray's writer made of each (OpenEXR's are
 # encoded as tiles are).
 @pytest.mark.parametrize("division", ["frame", "sequence"])
 @pytest.mark.parametrize("name", sorted(FORMATS))
@@ -428,7 +428,7 @@ def file_metadata(path):
 
 
 # An assembled Targa frame is encoded by POV-Ray's own writer (fc-image-writer), with the
-# gamma the renderer's file records (patch 0039), so it is the file one POV-Ray process writes
+# gamma the renderer's file records, so it is the file one POV-Ray process writes
 # but for the time in its footer; and the master never loads OpenImageIO for it.
 @pytest.mark.parametrize("fmt", [["+FT"], ["+FC", "File_Gamma=1.8"]], ids=["targa", "rle-gamma-1.8"])
 def test_assembled_targa_is_povrays_own_file(coordinator, coordinator_references, tmp_path, fmt):
@@ -463,6 +463,22 @@ def test_failing_image_writer_falls_back_to_openimageio(coordinator, coordinator
     assert_frames_exact(out, coordinator_references.frames(SCENE, SMALL))
 
 
+# Diffusion dithering has one implementation, POV-Ray's own in fc-image-writer: without it a
+# frame assembled from tiles cannot be dithered, and the run stops saying why, with no frame
+# file written.
+def test_failing_image_writer_stops_diffusion_dithering(coordinator, tmp_path):
+    out = tmp_path / "out"
+    argv = [str(master_with_failing_image_writer(tmp_path)), "--quiet", "--division", "frame",
+            "--tile", "48", "--slaves", "2", "--povray", coordinator_renderer(), SCENE] + SMALL + \
+        ["Dither=on", "-o", str(out)]
+    r = subprocess.run(argv, cwd=COORDINATOR_SCENES, env=coordinator.env(), capture_output=True,
+                       text=True, timeout=90)
+    assert r.returncode == 1, r.stderr
+    assert "cannot write frame 1: diffusion dithering: " in r.stderr, r.stderr
+    assert "cannot encode today" in r.stderr, r.stderr
+    assert not list(out.glob("*.tga"))
+
+
 def test_image_writer_refuses_malformed_requests(tmp_path):
     writer = os.path.join(os.path.dirname(coordinator_renderer()), "fc-image-writer")
     r = subprocess.run([writer, "extra"], capture_output=True, text=True)
@@ -472,7 +488,7 @@ def test_image_writer_refuses_malformed_requests(tmp_path):
     assert r.returncode == 1 and "descriptor 3" in r.stderr, r.stderr
     req_r, req_w = os.pipe()
     rep_r, rep_w = os.pipe()
-    os.write(req_w, b"not a request at all, no")
+    os.write(req_w, b"not a request at all, no" * 4)    # longer than a request
     os.close(req_w)
 
     def fds():

@@ -22,7 +22,7 @@ CASES = {
     # Radiosity is order dependent across threads; with one thread it is deterministic.
     "object-pattern-radiosity-wt1": (f"{EXAMPLES}/advanced/object_pattern.pov",
                                      ["+W160", "+H120", "+WT1"]),
-    # Radiosity's sample directions are made on first use (patch 0038), not before each block.
+    # Radiosity's sample directions are made on first use (patch 0420), not before each block.
     "cornell-radiosity-wt1": (f"{EXAMPLES}/radiosity/cornell.pov", ["+W120", "+H90", "+WT1"]),
 }
 

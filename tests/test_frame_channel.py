@@ -1,16 +1,18 @@
-"""povray-fc's frame channel and frame control (patches 0020-0022), without the coordinator.
+"""povray-fc's frame channel and frame control (frame-channel/), without the coordinator.
 
 A render with Frame_Channel writes one record per frame (a header line, then the pixels of
 the frame's rectangles as the Targa writer encodes them) and no image file; with
 Frame_Control it renders, frame by frame, only what the control lines ask for. Pixels are
 compared with a plain render of the same frames (OpenImageIO).
 """
+import os
+import struct
 import subprocess
 
 import numpy as np
 import pytest
 
-from fcutil import POVRAY_FC, SCENES, read_pixels
+from fcutil import BIN, POVRAY_FC, SCENES, read_pixels
 
 SCENE = SCENES / "coordinator-test" / "moving.pov"
 ANIMATION = ["+W160", "+H120", "+KFI1", "+KFF4"]
@@ -24,7 +26,7 @@ def povray(args, tmp_path):
 
 def records(path, with_files=False):
     """[(fields, rects, payload)] of a frame channel file; with_files, (fields, rects,
-    payload, file): file is the image file a whole-image record carries (patch 0034), or None."""
+    payload, file): file is the image file a whole-image record carries, or None."""
     data = path.read_bytes()
     out, pos = [], 0
     while pos < len(data):
@@ -120,7 +122,7 @@ def test_frame_coherence_rectangle_left_out_then_back(tmp_path, options):
                          ids=["targa", "rle-targa", "png", "targa-fc", "png-fc"])
 def test_whole_image_records_carry_the_file(tmp_path, options, ext):
     # A record of the whole image carries the file POV-Ray's writer makes of the frame, after
-    # the pixels (patch 0034); a record of rectangles carries none. With fc the file's
+    # the pixels; a record of rectangles carries none. With fc the file's
     # encoding shares the memo of encoded pixels with the record's: both must stay exact.
     options = ["+A0.1", "+AM1"] + options
     r = channel_render(tmp_path, options, "render 1\nrender 2 0,0,32,32\nrender 3\nrender 4\n")
@@ -173,20 +175,41 @@ def test_unusable_channel_is_an_error(tmp_path):
     assert f"Cannot open frame channel '{tmp_path}/no/such/dir'" in r.stdout + r.stderr
 
 
-def test_diffusion_dithering_sends_values_and_quantizer(tmp_path):
-    r = channel_render(tmp_path, ["-A", "Dither=on"], "render 1 0,0,50,40\n")
+def image_writer_dither(width, height, values, diffusion):
+    """The frame of values (3 floats a pixel) dithered by fc-image-writer, as fc-master has it
+    dither a frame assembled from tiles: width x height x 3 bytes."""
+    request = struct.pack("<Iiiiif", 0x32574346, 2, width, height, 0, 0.0) + diffusion
+    req_r, req_w = os.pipe()
+    rep_r, rep_w = os.pipe()
+    writer = subprocess.Popen([str(BIN / "fc-image-writer")], pass_fds=(3, 4),
+                              preexec_fn=lambda: (os.dup2(req_r, 3), os.dup2(rep_w, 4)))
+    os.close(req_r)
+    os.close(rep_w)
+    with os.fdopen(req_w, "wb") as requests:
+        requests.write(request + values)
+    with os.fdopen(rep_r, "rb") as replies:
+        magic, ok, size = struct.unpack("<IiQ", replies.read(16))
+        answer = replies.read(size)
+    assert writer.wait(timeout=30) == 0
+    assert magic == 0x31524346 and ok == 1, answer
+    return np.frombuffer(answer, np.uint8).reshape(height, width, 3)
+
+
+def test_diffusion_dithering_sends_values_for_povrays_own_dither(tmp_path):
+    # Error diffusion crosses tiles: the record carries the values the Targa writer would
+    # quantise and how to dither them (method, working and file gamma); POV-Ray's own dither
+    # handler over them (fc-image-writer's) gives the file one POV-Ray process writes.
+    r = channel_render(tmp_path, ["-A", "Dither=on"], "render 1\nrender 2 0,0,50,40\n")
     assert r.returncode == 0, r.stderr
-    [(fields, rects, payload)] = records(tmp_path / "channel")
-    assert fields["encoding"] == "rgbf"
-    # 3 floats a pixel, then the method (Floyd-Steinberg = 3), 255 thresholds, 256 levels.
-    assert len(payload) == 50 * 40 * 12 + 4 + 255 * 4 + 256 * 4
-    table = payload[50 * 40 * 12:]
-    assert int.from_bytes(table[:4], "little") == 3
-    thresholds = np.frombuffer(table[4:4 + 255 * 4], np.float32)
-    levels = np.frombuffer(table[4 + 255 * 4:], np.float32)
-    assert np.all(np.diff(thresholds) > 0) and levels[0] == 0 and levels[255] == 1
-    # Quantized without dithering, the values are at most one level from the dithered file.
-    values = np.frombuffer(payload[:50 * 40 * 12], np.float32).reshape(40, 50, 3)
-    plain = np.searchsorted(thresholds, values, side="right")
-    dithered = reference(tmp_path, ["-A", "Dither=on"])[1][:40, :50].astype(int)
-    assert np.abs(plain - dithered).max() <= 1
+    (whole, whole_rects, values), (part, part_rects, part_values) = records(tmp_path / "channel")
+    assert whole["encoding"] == part["encoding"] == "rgbf"
+    assert whole_rects == [(0, 0, 160, 120)] and part_rects == [(0, 0, 50, 40)]
+    assert len(part_values) == 50 * 40 * 12 + 20
+    pixels = 160 * 120 * 12
+    assert len(values) == pixels + 20
+    # Floyd-Steinberg (3, the default), a neutral working gamma (1) and sRGB files (3, 2.2).
+    method, working_type, _, file_type, file_gamma = struct.unpack("<iifif", values[pixels:])
+    assert (method, working_type, file_type) == (3, 1, 3) and abs(file_gamma - 2.2) < 1e-6
+    ref = reference(tmp_path, ["-A", "Dither=on"])
+    dithered = image_writer_dither(160, 120, values[:pixels], values[pixels:])
+    assert np.array_equal(dithered, ref[1])

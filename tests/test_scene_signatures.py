@@ -1,4 +1,4 @@
-"""Change detection at parse time (patches/0006-parse-scene-signatures.patch).
+"""Change detection at parse time (the parse patches, 0230-0245).
 
 With POVRAYFC_DEBUG_SIGNATURES=1 the parser lists, for every frame, each top-level
 item's class, hash, source line and world bounds, then the camera, lights and global

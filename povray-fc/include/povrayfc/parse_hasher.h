@@ -1,6 +1,6 @@
 // Change detection at parse time: a 64-bit hash of what the parser consumed, per item.
 //
-// The patched parser (patches/0006-parse-scene-signatures.patch) feeds a ParseHasher
+// The patched parser (patches/0230-0245: parse hashing and signatures) feeds a ParseHasher
 // with every token it reads (reserved word ids, literal values, the value of `clock`
 // and of float/vector/colour/string identifiers, the content hash of every other kind
 // of identifier) and with every evaluated numeric factor (so rand() and file_exists()
