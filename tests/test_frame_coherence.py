@@ -143,3 +143,26 @@ def test_moving_child_of_a_union_dirties_only_its_places(tmp_path):
     for row in rows[1:]:
         assert row["full_reason"] == "", row
         assert 0 < int(row["traced"]) < int(row["pixels"]) // 5, row
+
+
+@pytest.mark.parametrize("bounding", [["+BM2"], ["-MB"], ["+MB100"]], ids=["bsp", "no-bounding", "threshold-100"])
+@pytest.mark.parametrize("scene", ["tie_swap", "tie_far_change", "tie_shadow"])
+def test_ties_stay_exact_with_every_bounding_method(scene, bounding, tmp_path):
+    # Coincident surfaces: which one POV-Ray shows depends on how it bounds the scene (a
+    # BSP tree, bounding slabs, or the objects in scene order); fc follows each.
+    _, options = scene_header(FC_SCENES / f"{scene}.pov")
+    render_animation(FC_SCENES / f"{scene}.pov", tmp_path / "off", False, 1, options + bounding)
+    render_animation(FC_SCENES / f"{scene}.pov", tmp_path / "on", True, 1, options + bounding)
+    for n in range(1, FRAMES + 1):
+        assert_same_pixels(tmp_path / "off" / f"f{n}.tga", tmp_path / "on" / f"f{n}.tga")
+
+
+def test_isosurface_with_too_low_max_gradient_does_not_depend_on_the_pixel_traced_before(tmp_path):
+    # The root finder's cache of the last root-free stretch lives within one sample, so a
+    # pixel does not depend on the pixel its thread traced before: render blocks of 8 and
+    # of 32 pixels (which change that order) give the same frames without anti-aliasing.
+    scene = FC_SCENES / "isosurface_low_gradient.pov"
+    render_animation(scene, tmp_path / "bs32", False, 1, ["+BS32"])
+    render_animation(scene, tmp_path / "bs8", False, 1, ["+BS8"])
+    for n in range(1, FRAMES + 1):
+        assert_same_pixels(tmp_path / "bs32" / f"f{n}.tga", tmp_path / "bs8" / f"f{n}.tga")

@@ -106,7 +106,9 @@ bool BlockTracer::Begin(std::uint32_t serial, int left, int top, int right, int 
     if (old_ && plan.everythingDirty) old_ = nullptr;
     if (!old_) return false;
 
-    const bool nothingChanged = plan.changes == nullptr || plan.changes->Empty();
+    // A new order of the scene's objects dirties the order-sensitive samples alone.
+    const bool orderMatters = plan.orderChanged && old_->hasOrderSensitive;
+    const bool nothingChanged = (plan.changes == nullptr || plan.changes->Empty()) && !orderMatters;
     if (nothingChanged) {
         plan.counters->reusedPixels += area;
         plan.counters->reusedSamples += old_->samples.size();
@@ -124,7 +126,7 @@ bool BlockTracer::Begin(std::uint32_t serial, int left, int top, int right, int 
     if (!old_->fansBuilt) BuildRecordFans(*old_);
     const BlockHulls reach = FindBlockHulls(old_->fans, *plan.changes);
     bool anyDirty = false;
-    if (reach.Any() || old_->hasEverything) {
+    if (reach.Any() || old_->hasEverything || orderMatters) {
         // The block's cones reach a change (or a sample depends on everything): narrow
         // it down to the groups of samples whose own cones reach it.
         groupReach_.resize(old_->groupFans.size());
@@ -139,7 +141,7 @@ bool BlockTracer::Begin(std::uint32_t serial, int left, int top, int right, int 
         std::uint64_t tested = 0, cleared = 0;
         for (std::size_t i = 0; i < n; ++i) {
             StoredSample &s = old_->samples[i];
-            bool dirty = s.segmentCount == StoredSample::kEverything;
+            bool dirty = s.segmentCount == StoredSample::kEverything || (orderMatters && s.orderSensitive);
             if (!dirty && groupReaches_[s.group]) {
                 // Clean by what it kept, while the changes stay near where they were then and
                 // reach no class of its segments it did not test; else tested, keeping what
@@ -260,6 +262,7 @@ void BlockTracer::EndSample(double x, double y, const float rgbft[5]) {
     s.x = x;
     s.y = y;
     s.group = std::uint32_t(next_.GroupOf(x, y));
+    s.orderSensitive = recorder_.OrderSensitive();
     std::copy(rgbft, rgbft + 5, s.colour);
     if (recorder_.Everything()) {
         recorder_.Discard();  // its segments say nothing
@@ -360,8 +363,10 @@ void BlockTracer::End() {
             record->groupFans = std::move(old_->groupFans);  // old_ is replaced below
             GrowRecordFans(*record, tracedSegments_, tracedGroups_);
         }
-        for (const StoredSample &s : record->samples)
+        for (const StoredSample &s : record->samples) {
             record->hasEverything |= s.segmentCount == StoredSample::kEverything;
+            record->hasOrderSensitive |= s.orderSensitive;
+        }
     }
     old_ = nullptr;
     plan.store->Put(serial_, std::move(record));
@@ -400,7 +405,7 @@ bool BlockTracer::UpdateInPlace() {
     BlockRecord &r = *old_;
     if (!sameOrder_ || next_.samples.size() != r.samples.size() || !r.fansBuilt) return false;
     std::size_t fresh = 0;
-    bool everythingReplaced = false;
+    bool everythingReplaced = false, orderSensitiveReplaced = false;
     tracedIndices_.clear();
     for (std::size_t i = 0; i < next_.samples.size(); ++i) {
         if (keptFromOld_[i]) continue;
@@ -408,6 +413,8 @@ bool BlockTracer::UpdateInPlace() {
         StoredSample &stored = r.samples[i];
         const bool storedHasSegments = stored.segmentCount != StoredSample::kEverything;
         everythingReplaced |= !storedHasSegments;
+        orderSensitiveReplaced |= stored.orderSensitive && !traced.orderSensitive;
+        r.hasOrderSensitive |= traced.orderSensitive;
         if (traced.segmentCount == StoredSample::kEverything) {
             if (storedHasSegments) r.deadSegments += stored.segmentCount;
             stored = traced;
@@ -447,6 +454,10 @@ bool BlockTracer::UpdateInPlace() {
     if (everythingReplaced) {
         r.hasEverything = false;
         for (const StoredSample &s : r.samples) r.hasEverything |= s.segmentCount == StoredSample::kEverything;
+    }
+    if (orderSensitiveReplaced) {
+        r.hasOrderSensitive = false;
+        for (const StoredSample &s : r.samples) r.hasOrderSensitive |= s.orderSensitive;
     }
     std::copy(next_.pixels.begin(), next_.pixels.end(), r.pixels.begin());
     r.apexes = next_.apexes;

@@ -14,6 +14,13 @@ bool SameRenderSettings(const FrameSetup &a, const FrameSetup &b) {
            a.blockSize == b.blockSize && a.optionsHash == b.optionsHash;
 }
 
+bool SameObjectOrder(const SceneSignature &a, const SceneSignature &b) {
+    if (a.objects.size() != b.objects.size()) return false;
+    for (std::size_t i = 0; i < a.objects.size(); ++i)
+        if (a.objects[i].hash != b.objects[i].hash) return false;
+    return true;
+}
+
 Hull ChildHull(const ChildSignature &child) {
     return child.hasCapsule ? MakeHull(child.bounds, child.capsule) : MakeHull(child.bounds);
 }
@@ -90,6 +97,11 @@ FrameChange CompareFrames(const FrameSetup &lastSetup, const SceneSignature &las
         change.fullReason = "global settings or atmosphere changed";
         return change;
     }
+
+    // The objects' order decides ties between coincident surfaces: POV-Ray builds its
+    // bounding tree from the objects in parse order (splitting unions in place), so the same
+    // list of hashes gives the same tree.
+    change.orderChanged = !SameObjectOrder(last, now);
 
     // Objects are matched as a multiset of signatures: what vanished changed at its old
     // place, what appeared at its new one.

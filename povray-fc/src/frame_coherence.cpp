@@ -176,6 +176,7 @@ void FrameCoherence::PlanFrame(const FrameSetup &setup, const SceneSignature &si
         plan_.everythingDirty = false;
         changes_ = ChangeIndex(std::move(change.hulls), setup.gridResolution);
         plan_.changes = &changes_;
+        plan_.orderChanged = change.orderChanged;
         current_.changedHulls = changes_.HullCount();
         if (!changes_.Empty() && changes_.Bounds().IsFinite()) plan_.changeStamp = drift_.Begin(changes_.Bounds());
         plan_.drift = &drift_;

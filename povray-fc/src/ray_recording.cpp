@@ -1,10 +1,12 @@
-// The thread-local recorder pointer the tracing hooks test.
+// The thread-local pointers the tracing hooks test.
 #include "povrayfc/ray_recording.h"
+#include "povrayfc/tie_watch.h"
 
 namespace povrayfc {
 namespace detail {
 
 thread_local SampleRecorder *tlsRecorder = nullptr;
+thread_local TieWatch *tlsTieWatch = nullptr;
 
 }  // namespace detail
 }  // namespace povrayfc

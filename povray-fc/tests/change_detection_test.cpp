@@ -110,3 +110,38 @@ TEST(ChangeDetection, NothingAndGlobalChanges) {
 
 }  // namespace
 }  // namespace povrayfc
+
+namespace povrayfc {
+namespace {
+
+ObjectSignature Plain(std::uint64_t hash, double x) {
+    ObjectSignature o;
+    o.hash = hash;
+    o.bounds = Box{Vec3{x, 0, 0}, Vec3{x + 1, 1, 1}};
+    return o;
+}
+
+TEST(ChangeDetection, TheSameObjectsInAnotherOrderChangeTheOrderOnly) {
+    // Invariant: a permutation is no object change, but POV-Ray may meet tied surfaces in
+    // another order.
+    const SceneSignature a = Scene({Plain(1, 0), Plain(2, 0), Plain(3, 5)});
+    const SceneSignature b = Scene({Plain(2, 0), Plain(1, 0), Plain(3, 5)});
+    const FrameChange c = CompareFrames(Frame(), a, Frame(), b, false);
+    EXPECT_EQ(c.fullReason, "");
+    EXPECT_TRUE(c.hulls.empty());
+    EXPECT_TRUE(c.orderChanged);
+    EXPECT_FALSE(c.NothingChanged());
+}
+
+TEST(ChangeDetection, AnyObjectChangeChangesTheOrderAndNoChangeDoesNot) {
+    // Invariant: a change anywhere may reshape the bounding tree; an identical list cannot.
+    const SceneSignature a = Scene({Plain(1, 0), Plain(2, 0), Plain(3, 5)});
+    const SceneSignature moved = Scene({Plain(1, 0), Plain(2, 0), Plain(4, 9)});
+    EXPECT_TRUE(CompareFrames(Frame(), a, Frame(), moved, false).orderChanged);
+    const FrameChange same = CompareFrames(Frame(), a, Frame(), a, false);
+    EXPECT_FALSE(same.orderChanged);
+    EXPECT_TRUE(same.NothingChanged());
+}
+
+}  // namespace
+}  // namespace povrayfc

@@ -10,6 +10,7 @@
 #include "povrayfc/block_tracer.h"
 #include "povrayfc/frame_coherence.h"
 #include "povrayfc/ray_recording.h"
+#include "povrayfc/tie_watch.h"
 
 namespace povrayfc {
 namespace {
@@ -50,9 +51,15 @@ void TraceToy(const ToyScene &scene, double x, double y, float rgbft[5]) {
     const double o[3] = {x, y, -10}, d[3] = {0, 0, 1};
     double best = 1e30;
     const ToyBox *hit = nullptr;
-    for (const ToyBox &b : scene.boxes) {
-        const double t = Hit(b, o, d);
-        if (t >= 0 && t < best) best = t, hit = &b;
+    {
+        // Like POV-Ray, the first of two boxes at the same depth wins: in scene order.
+        TieWatch ties(d, best);
+        for (const ToyBox &b : scene.boxes) {
+            const double t = Hit(b, o, d);
+            if (t < 0) continue;
+            NoteTieCandidate(t);
+            if (t < best) best = t, hit = &b;
+        }
     }
     RecordRaySegment(o, d, hit ? best : 2e10);
     std::memset(rgbft, 0, 5 * sizeof(float));
@@ -72,9 +79,14 @@ void TraceToy(const ToyScene &scene, double x, double y, float rgbft[5]) {
         const double r[3] = {0.3, 0.4, -0.866};
         double rbest = 1e30;
         const ToyBox *rhit = nullptr;
-        for (const ToyBox &b : scene.boxes) {
-            const double t = (&b == hit) ? -1 : Hit(b, p, r);
-            if (t >= 0 && t < rbest) rbest = t, rhit = &b;
+        {
+            TieWatch ties(r, rbest);
+            for (const ToyBox &b : scene.boxes) {
+                const double t = (&b == hit) ? -1 : Hit(b, p, r);
+                if (t < 0) continue;
+                NoteTieCandidate(t);
+                if (t < rbest) rbest = t, rhit = &b;
+            }
         }
         RecordRaySegment(p, r, rhit ? rbest : 2e10);
         rgbft[2] = rhit ? float(rhit->id) : 0.5f;
@@ -618,6 +630,50 @@ TEST_F(FrameCoherenceRun, ReplayedBlockInTheSameOrderIsUpdatedInPlace) {
     EXPECT_NE(record(), first);
     EXPECT_TRUE(consistent(*record()));
     EXPECT_EQ(record()->deadSegments, 0u);
+}
+
+}  // namespace
+}  // namespace povrayfc
+
+namespace povrayfc {
+namespace {
+
+// Two boxes with the same corners and other colours (ids): the toy shows the first in
+// scene order, as POV-Ray shows the first its bounding tree meets.
+ToyScene Coincident(bool redFirst, double moverX) {
+    ToyScene s = Frame(moverX);
+    const ToyBox red{4, Box{Vec3{1, 5, 2}, Vec3{5, 7, 3}}}, blue{5, Box{Vec3{1, 5, 2}, Vec3{5, 7, 3}}};
+    s.boxes.push_back(redFirst ? red : blue);
+    s.boxes.push_back(redFirst ? blue : red);
+    return s;
+}
+
+TEST_F(FrameCoherenceRun, SwappedCoincidentObjectsAreTracedAgain) {
+    // Invariant: the same objects in another order are a change for the samples whose
+    // nearest hit was a tie, and for them alone.
+    const ToyScene first = Coincident(true, 0), second = Coincident(false, 0);
+    RenderFc(first, 1);
+    const FcResult r = RenderFc(second, 2);
+    EXPECT_EQ(r.image, RenderFull(second));
+    EXPECT_GT(r.tracedSamples, 0u);
+    EXPECT_LT(r.tracedSamples, 60u);  // the tied box's samples (8 pixels, their AA borders)
+}
+
+TEST_F(FrameCoherenceRun, TiedSamplesAreTracedAgainWhenAnythingMovesAndNotOtherwise) {
+    // A change far from the tie may reshape POV-Ray's bounding tree: the tied samples are
+    // traced again. A frame where nothing moved keeps them.
+    RenderFc(Coincident(true, 0), 1);
+    const FcResult still = RenderFc(Coincident(true, 0), 2);
+    EXPECT_EQ(still.tracedSamples, 0u);
+    const ToyScene moved = Coincident(true, 0.5);
+    const FcResult r = RenderFc(moved, 3);
+    EXPECT_EQ(r.image, RenderFull(moved));
+    const FcResult withoutTies = [&] {
+        SetUp();
+        RenderFc(Frame(0), 1);
+        return RenderFc(Frame(0.5), 2);
+    }();
+    EXPECT_GT(r.tracedSamples, withoutTies.tracedSamples);
 }
 
 }  // namespace

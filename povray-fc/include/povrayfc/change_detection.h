@@ -20,8 +20,12 @@ struct FrameChange {
     // an unbounded object...). Empty: only what meets `hulls` changed.
     std::string fullReason;
     std::vector<Hull> hulls;  // the old and new hulls of every changed object
+    // The scene's objects in parse order differ (a change, or the same objects in another
+    // order): POV-Ray's bounding tree, and with it which of two surfaces tied in depth it
+    // meets first, may differ (tie_watch.h).
+    bool orderChanged = false;
 
-    bool NothingChanged() const { return fullReason.empty() && hulls.empty(); }
+    bool NothingChanged() const { return fullReason.empty() && hulls.empty() && !orderChanged; }
 };
 
 // Compares frame `now` with frame `last` (both parsed completely). `photons`: the scene

@@ -38,6 +38,10 @@ struct FramePlan {
     Mode mode = Mode::kIdle;
     bool everythingDirty = true;       // no stored sample may be reused this frame
     const ChangeIndex *changes = nullptr;  // what changed; empty when nothing did
+    // The ordered list of the scene's objects differs from the last frame's (something
+    // changed, appeared, vanished or moved in it): the bounding tree may have another
+    // shape, so every order-sensitive sample is dirty (tie_watch.h).
+    bool orderChanged = false;
     // This frame's stamp among the frames whose changes samples keep clearances from (0:
     // none is kept or trusted this frame), and how far the changes moved since each.
     std::uint32_t changeStamp = 0;

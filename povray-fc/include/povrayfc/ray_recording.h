@@ -91,6 +91,7 @@ class SampleRecorder {
         first_ = segments.size();
         everything_ = false;
         deep_ = false;
+        orderSensitive_ = false;
     }
     void Add(const double origin[3], const double direction[3], double tmax) {
         Segment s;
@@ -119,8 +120,12 @@ class SampleRecorder {
         fanOf_->push_back(apexes_->AimFan(aim, deep_));
     }
     void MarkEverything() { everything_ = true; }
+    // One of the sample's searches for a nearest intersection ended in a tie that the order
+    // of the scene's objects decided (tie_watch.h).
+    void MarkOrderSensitive() { orderSensitive_ = true; }
 
     bool Everything() const { return everything_; }
+    bool OrderSensitive() const { return orderSensitive_; }
     std::size_t First() const { return first_; }
     std::size_t Count() const { return segments_->size() - first_; }
     // Drops the sample's segments (it depends on everything anyway).
@@ -136,6 +141,7 @@ class SampleRecorder {
     std::size_t first_ = 0;
     bool everything_ = false;
     bool deep_ = false;  // a reflected or refracted ray was recorded in this sample
+    bool orderSensitive_ = false;
 };
 
 namespace detail {

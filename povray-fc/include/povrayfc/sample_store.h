@@ -39,7 +39,10 @@ struct StoredSample {
     // BlockRecord::GroupOf(x, y), worked out once when the sample is recorded: the test of
     // a block's samples against a frame's changes reads it for every sample. It fills what
     // was padding.
-    std::uint32_t group = 0;
+    std::uint32_t group : 31;
+    // A search for one of its rays' nearest intersections ended in a tie the order of the
+    // scene's objects decided (tie_watch.h): traced again whenever that order may differ.
+    std::uint32_t orderSensitive : 1;
     // Found clean in the frame stamped clearStamp (0: never, or traced since): its segments
     // of the bundle classes in the low BlockHulls::kClassBits bits of `clearance` (every
     // one of its segments in such a class was tested) missed that frame's changes by the
@@ -48,6 +51,8 @@ struct StoredSample {
     // stays clean without a test (change_drift.h, block_tracer.cpp).
     std::uint32_t clearStamp = 0;
     std::uint32_t clearance = 0;
+
+    StoredSample() : group(0), orderSensitive(0) {}
 };
 static_assert(sizeof(StoredSample) == 56, "StoredSample grew: the store's size per pixel counts it");
 
@@ -73,6 +78,7 @@ struct BlockRecord {
     std::vector<BlockFans> groupFans;
     bool fansBuilt = false;
     bool hasEverything = false; // a sample depends on everything (any change dirties it)
+    bool hasOrderSensitive = false;  // a sample is StoredSample::orderSensitive
 
     static constexpr int kGroupPixels = 8;
 

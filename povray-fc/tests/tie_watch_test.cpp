@@ -1,0 +1,114 @@
+// Tests for TieWatch: which searches for a nearest intersection hang on object order.
+#include <gtest/gtest.h>
+
+#include <vector>
+
+#include "povrayfc/ray_recording.h"
+#include "povrayfc/tie_watch.h"
+
+namespace povrayfc {
+namespace {
+
+// Runs `search` as one recorded sample and says whether the sample came out order-sensitive.
+template <class Search>
+bool OrderSensitive(Search search) {
+    std::vector<Segment> segments;
+    std::vector<std::uint8_t> fans;
+    FanApexes apexes;
+    SampleRecorder recorder;
+    recorder.Begin(segments, fans, apexes);
+    StartRecordingRays(recorder);
+    search();
+    StopRecordingRays();
+    return recorder.OrderSensitive();
+}
+
+const double kDirection[3] = {0.0, 0.6, 0.8};
+
+TEST(TieWatch, TwoCandidatesAtTheBestDepthAreATie) {
+    // Invariant: equal depths of two objects make the answer depend on which came first.
+    EXPECT_TRUE(OrderSensitive([] {
+        double best = 1e30;
+        TieWatch watch(kDirection, best);
+        for (double t : {3.0, 2.0, 2.0}) {
+            NoteTieCandidate(t);
+            if (t < best) best = t;
+        }
+    }));
+}
+
+TEST(TieWatch, DistinctDepthsAndTiesBehindTheBestAreNot) {
+    // Invariant: the nearest of distinct depths is the same in any order; a tie behind the
+    // best depth decides nothing.
+    EXPECT_FALSE(OrderSensitive([] {
+        double best = 1e30;
+        TieWatch watch(kDirection, best);
+        for (double t : {2.0, std::nextafter(2.0, 3.0), 5.0, 5.0}) {
+            NoteTieCandidate(t);
+            if (t < best) best = t;
+        }
+    }));
+}
+
+TEST(TieWatch, ABoxSkippedJustBehindTheBestDepthIsATie) {
+    // Invariant: an object whose float box begins within rounding behind the best depth may
+    // reach it; another tree might have tried it first.
+    EXPECT_TRUE(OrderSensitive([] {
+        double best = 1e30;
+        TieWatch watch(kDirection, best);
+        NoteTieCandidate(2.0);
+        best = 2.0;
+        NoteTieSkipped(2.0 + 1e-7, 10.0);
+    }));
+    EXPECT_FALSE(OrderSensitive([] {
+        double best = 1e30;
+        TieWatch watch(kDirection, best);
+        NoteTieCandidate(2.0);
+        best = 2.0;
+        NoteTieSkipped(2.1, 10.0);
+    }));
+}
+
+TEST(TieWatch, TheSlackGrowsWithTheBoxesAndAGrazingDirection) {
+    // Invariant: float rounding of larger coordinates, met at a grazing angle, moves a
+    // box's entry farther along the ray.
+    double best = 0;
+    std::vector<Segment> segments;
+    std::vector<std::uint8_t> fans;
+    FanApexes apexes;
+    SampleRecorder recorder;
+    recorder.Begin(segments, fans, apexes);
+    StartRecordingRays(recorder);
+    const double steep[3] = {0.0, 0.6, 0.8}, grazing[3] = {0.001, 0.6, 0.8};
+    TieWatch a(steep, best), b(grazing, best);
+    EXPECT_LT(a.SkipSlack(10.0), a.SkipSlack(1000.0));
+    EXPECT_LT(a.SkipSlack(10.0), b.SkipSlack(10.0));
+    // At least the float rounding of a box corner, 2^-24 of its magnitude, over the
+    // direction component it is crossed along.
+    EXPECT_GE(a.SkipSlack(1000.0), std::ldexp(1000.0, -23) / 0.6);
+    StopRecordingRays();
+}
+
+TEST(TieWatch, InnermostWatchTakesTheNotesAndNothingHappensWithoutRecording) {
+    // Invariant: without a recording sample the hooks do nothing; nested searches do not
+    // mix their candidates.
+    double best = 1e30;
+    {
+        TieWatch idle(kDirection, best);
+        EXPECT_FALSE(TieWatchOpen());
+        NoteTieCandidate(1.0);
+    }
+    EXPECT_FALSE(OrderSensitive([] {
+        double outerBest = 1.0, innerBest = 1e30;
+        TieWatch outer(kDirection, outerBest);
+        NoteTieCandidate(1.0);
+        {
+            TieWatch inner(kDirection, innerBest);
+            NoteTieCandidate(1.0);  // the inner search's only candidate
+            innerBest = 1.0;
+        }
+    }));
+}
+
+}  // namespace
+}  // namespace povrayfc
