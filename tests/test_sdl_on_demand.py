@@ -1,4 +1,4 @@
-"""povray-fc loads SDL (its display) only when a display opens (povray-fc/sdl/).
+"""povray-fc loads SDL (its display) only when a display opens (speedups/sdl_on_demand.c).
 
 Debian's libSDL-1.2 loads SDL2 and its libraries from a constructor, most of a short
 process's start; povray-fc without a display must not pay it, with a display it must still
