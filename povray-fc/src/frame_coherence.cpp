@@ -168,12 +168,16 @@ void FrameCoherence::PlanFrame(const FrameSetup &setup, const SceneSignature &si
         current_.fullReason = change.fullReason;
         // A new sequence after the first frame is full because something global changed.
         wastedIfFull_ = change.fullReason != "first frame" && change.fullReason != "recording resumed";
+        NumberUnits(change, signature.units.size(), true);
     } else if (!change.fullReason.empty()) {
         plan_.everythingDirty = true;
         current_.fullReason = change.fullReason;
         wastedIfFull_ = true;
+        NumberUnits(change, signature.units.size(), true);
     } else {
         plan_.everythingDirty = false;
+        NumberUnits(change, signature.units.size(), false);
+        current_.changedUnits = changedIds_.size();
         changes_ = ChangeIndex(std::move(change.hulls), setup.gridResolution);
         plan_.changes = &changes_;
         plan_.orderChanged = change.orderChanged;
@@ -181,6 +185,25 @@ void FrameCoherence::PlanFrame(const FrameSetup &setup, const SceneSignature &si
         if (!changes_.Empty() && changes_.Bounds().IsFinite()) plan_.changeStamp = drift_.Begin(changes_.Bounds());
         plan_.drift = &drift_;
     }
+}
+
+void FrameCoherence::NumberUnits(const FrameChange &change, std::size_t unitCount, bool afresh) {
+    for (std::uint32_t id : changedIds_) changedUnits_[id] = 0;
+    changedIds_.clear();
+    plan_.changedUnitMask = 0;
+    if (afresh) {
+        unitIds_.Reset(unitCount);
+    } else {
+        unitIds_.Advance(change.continues, change.vanished, changedIds_);
+    }
+    if (changedUnits_.size() < unitIds_.Limit()) changedUnits_.resize(unitIds_.Limit(), 0);
+    for (std::uint32_t id : changedIds_) {
+        changedUnits_[id] = 1;
+        plan_.changedUnitMask |= UnitMaskBit(id);
+    }
+    plan_.unitIds = unitIds_.Current().data();
+    plan_.unitCount = unitIds_.Current().size();
+    plan_.changedUnits = &changedUnits_;
 }
 
 void FrameCoherence::EndFrame(std::uint64_t raysTraced) {

@@ -17,6 +17,7 @@
 #include <memory>
 #include <string>
 
+#include "povrayfc/change_detection.h"
 #include "povrayfc/change_index.h"
 #include "povrayfc/dirty_mask.h"
 #include "povrayfc/frame_plan.h"
@@ -25,6 +26,7 @@
 #include "povrayfc/recording_policy.h"
 #include "povrayfc/sample_store.h"
 #include "povrayfc/scene_signature.h"
+#include "povrayfc/unit_ids.h"
 
 namespace povrayfc {
 
@@ -61,6 +63,9 @@ class FrameCoherence {
     static void CheckMemory(const FrameSetup &setup);
     void PlanFrame(const FrameSetup &setup, const SceneSignature &signature, const SceneEffects &effects,
                    const std::string &inexact);
+    // Gives this frame's units their ids (afresh when every stored sample is traced again)
+    // and marks the changed ones for the render threads.
+    void NumberUnits(const FrameChange &change, std::size_t unitCount, bool afresh);
 
     // The last frame parsed with fc on (kept while recording is paused, to see when a
     // frame can be coherent again).
@@ -71,6 +76,9 @@ class FrameCoherence {
     std::unique_ptr<SampleStore> store_;
     ChangeIndex changes_;
     ChangeDrift drift_;  // the changes of recent frames, for the clearances samples keep
+    UnitIds unitIds_;
+    std::vector<std::uint8_t> changedUnits_;  // by unit id: changed or vanished this frame
+    std::vector<std::uint32_t> changedIds_;   // the ids set in changedUnits_
     FrameCounters counters_;
     DirtyMask tracedMask_;
     FramePlan plan_;

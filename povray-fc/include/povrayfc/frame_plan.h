@@ -5,6 +5,7 @@
 
 #include <atomic>
 #include <cstdint>
+#include <vector>
 
 #include "povrayfc/change_drift.h"
 #include "povrayfc/change_index.h"
@@ -38,6 +39,13 @@ struct FramePlan {
     Mode mode = Mode::kIdle;
     bool everythingDirty = true;       // no stored sample may be reused this frame
     const ChangeIndex *changes = nullptr;  // what changed; empty when nothing did
+    // This frame's unit ids (unit_ids.h), by the index the parser wrote into the objects.
+    const std::uint32_t *unitIds = nullptr;
+    std::size_t unitCount = 0;
+    // By unit id: the unit changed or vanished this frame, so a segment that ended on it is
+    // dirty; and the UnitMaskBit of every such id.
+    const std::vector<std::uint8_t> *changedUnits = nullptr;
+    std::uint64_t changedUnitMask = 0;
     // The ordered list of the scene's objects differs from the last frame's (something
     // changed, appeared, vanished or moved in it): the bounding tree may have another
     // shape, so every order-sensitive sample is dirty (tie_watch.h).

@@ -30,6 +30,10 @@
 
 namespace povrayfc {
 
+// A unit id's bit in a 64-bit mask of ids (BlockRecord::unitMask): a block none of whose
+// bits is among the frame's changed units' has no segment that ended on one.
+inline std::uint64_t UnitMaskBit(std::uint32_t id) { return std::uint64_t(1) << ((id * 0x9E3779B1u) >> 26); }
+
 struct StoredSample {
     static constexpr std::uint32_t kEverything = 0xffffffffu;  // segmentCount: any change dirties it
 
@@ -79,6 +83,9 @@ struct BlockRecord {
     bool fansBuilt = false;
     bool hasEverything = false; // a sample depends on everything (any change dirties it)
     bool hasOrderSensitive = false;  // a sample is StoredSample::orderSensitive
+    // UnitMaskBit of every unit a segment of the record ended on (a superset once samples
+    // are traced again in place: bits are never taken out).
+    std::uint64_t unitMask = 0;
 
     static constexpr int kGroupPixels = 8;
 

@@ -1,0 +1,41 @@
+// UnitIds: see povrayfc/unit_ids.h.
+#include "povrayfc/unit_ids.h"
+
+namespace povrayfc {
+
+void UnitIds::Reset(std::size_t unitCount) {
+    current_.resize(unitCount);
+    for (std::size_t i = 0; i < unitCount; ++i) current_[i] = std::uint32_t(i);
+    limit_ = std::uint32_t(unitCount);
+    free_.clear();
+    released_.clear();
+}
+
+std::uint32_t UnitIds::Take() {
+    if (!free_.empty()) {
+        const std::uint32_t id = free_.back();
+        free_.pop_back();
+        return id;
+    }
+    return limit_++;
+}
+
+void UnitIds::Advance(const std::vector<std::uint32_t> &continues, const std::vector<std::uint32_t> &vanished,
+                      std::vector<std::uint32_t> &changedIds) {
+    // Ids given up last frame are referred to by no sample any more.
+    free_.insert(free_.end(), released_.begin(), released_.end());
+    released_.clear();
+    std::vector<std::uint32_t> next(continues.size(), kNone);
+    for (std::size_t i = 0; i < continues.size(); ++i)
+        if (continues[i] != kNone && continues[i] < current_.size()) next[i] = current_[continues[i]];
+    for (std::uint32_t last : vanished) {
+        if (last >= current_.size()) continue;
+        changedIds.push_back(current_[last]);
+        released_.push_back(current_[last]);
+    }
+    for (std::uint32_t &id : next)
+        if (id == kNone) id = Take();
+    current_.swap(next);
+}
+
+}  // namespace povrayfc
