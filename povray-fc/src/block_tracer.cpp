@@ -56,11 +56,15 @@ bool SampleIsDirty(const StoredSample &s, const BlockRecord &record, const Chang
 }
 
 // Whether one of the sample's segments ended on a unit that changed or vanished this frame.
+// (FramePlan::changedUnits by id: a shadow test an opaque surface answered holds while
+// that unit keeps its shape and stays opaque.)
 bool EndsOnChangedUnit(const StoredSample &s, const BlockRecord &record, const std::vector<std::uint8_t> &changed) {
     const Segment *segment = record.segments.data() + s.firstSegment;
     for (std::uint32_t i = 0; i < s.segmentCount; ++i) {
-        const std::uint32_t unit = segment[i].unit;
-        if (unit < changed.size() && changed[unit]) return true;
+        if (segment[i].unit == Segment::kNoUnit) continue;
+        const std::uint32_t unit = segment[i].UnitId();
+        if (unit >= changed.size() || changed[unit] == FramePlan::kUnitKept) continue;
+        if (changed[unit] == FramePlan::kUnitChanged || !(segment[i].unit & Segment::kOpaqueBlocker)) return true;
     }
     return false;
 }
@@ -69,7 +73,7 @@ bool EndsOnChangedUnit(const StoredSample &s, const BlockRecord &record, const s
 std::uint64_t UnitMaskOf(const Segment *first, std::size_t count) {
     std::uint64_t mask = 0;
     for (std::size_t i = 0; i < count; ++i)
-        if (first[i].unit != Segment::kNoUnit) mask |= UnitMaskBit(first[i].unit);
+        if (first[i].unit != Segment::kNoUnit) mask |= UnitMaskBit(first[i].UnitId());
     return mask;
 }
 

@@ -102,12 +102,18 @@ FrameChange CompareFrames(const FrameSetup &lastSetup, const SceneSignature &las
     if (!change.fullReason.empty()) return change;
 
     // A new unit whose geometry a vanished one had changed in appearance alone: no ray that
-    // did not end on the old one meets it. Any other new unit is tested by its hull.
+    // did not end on the old one meets it, and an opaque one still darkens the shadow tests
+    // the old one answered. Any other new unit is tested by its hull.
     KeyedIndices oldShapes;
-    for (std::uint32_t i : change.vanished) oldShapes.Add(last.units[i].geometry, i);
+    change.shadowsKept.assign(change.vanished.size(), 0);
+    for (std::uint32_t k = 0; k < change.vanished.size(); ++k) oldShapes.Add(last.units[change.vanished[k]].geometry, k);
     for (std::uint32_t i : appeared) {
         std::uint32_t same;
-        if (oldShapes.Take(now.units[i].geometry, same)) continue;
+        if (oldShapes.Take(now.units[i].geometry, same)) {
+            change.shadowsKept[same] = now.units[i].opaque ? 1 : 0;
+            change.continues[i] = change.vanished[same];
+            continue;
+        }
         if (now.units[i].infinite) {
             change.fullReason = "an unbounded object changed shape";
             change.hulls.clear();

@@ -194,11 +194,16 @@ void FrameCoherence::NumberUnits(const FrameChange &change, std::size_t unitCoun
     if (afresh) {
         unitIds_.Reset(unitCount);
     } else {
-        unitIds_.Advance(change.continues, change.vanished, changedIds_);
+        std::vector<std::uint32_t> released;
+        unitIds_.Advance(change.continues, change.vanished, released);
     }
     if (changedUnits_.size() < unitIds_.Limit()) changedUnits_.resize(unitIds_.Limit(), 0);
-    for (std::uint32_t id : changedIds_) {
-        changedUnits_[id] = 1;
+    for (std::size_t k = 0; !afresh && k < change.vanished.size(); ++k) {
+        const std::uint32_t id = unitIds_.Previous(change.vanished[k]);
+        if (id == UnitIds::kNone || id >= changedUnits_.size()) continue;
+        const bool shadowsKept = k < change.shadowsKept.size() && change.shadowsKept[k];
+        changedUnits_[id] = shadowsKept ? FramePlan::kUnitRecoloured : FramePlan::kUnitChanged;
+        changedIds_.push_back(id);
         plan_.changedUnitMask |= UnitMaskBit(id);
     }
     plan_.unitIds = unitIds_.Current().data();

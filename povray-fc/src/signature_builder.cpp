@@ -86,6 +86,10 @@ void SignatureBuilder::SetUnitContainsCamera(std::uint32_t unit) {
     if (unit < signature_.units.size()) signature_.units[unit].containsCamera = true;
 }
 
+void SignatureBuilder::SetUnitOpaque(std::uint32_t unit) {
+    if (unit < signature_.units.size()) signature_.units[unit].opaque = true;
+}
+
 void SignatureBuilder::EndItem(ParseItemClass itemClass, std::uint64_t hash, bool addedLights,
                                unsigned effects) {
     if (itemClass != ParseItemClass::kDiscard) NoteEffects(effects);
@@ -179,6 +183,7 @@ std::string SignatureBuilder::DebugListing() const {
             out << buffer;
             AppendBounds(out, unit.infinite, unit.bounds);
             if (unit.containsCamera) out << " camera";
+            if (unit.opaque) out << " opaque";
             out << '\n';
         }
         ++index;

@@ -44,7 +44,7 @@ BlockRecord RecordedBlock(std::mt19937_64 &rng, double spread) {
         {
             const double po[3] = {p.x, p.y, p.z}, ld[3] = {l.x, l.y, l.z};
             ShadowSegmentRecord shadow(po, ld, dist);
-            if (i % 5 == 0) shadow.BlockedAt(dist * (0.3 + 0.6 * (u(rng) + 1) / 2), kUnitNothing);
+            if (i % 5 == 0) shadow.BlockedAt(dist * (0.3 + 0.6 * (u(rng) + 1) / 2), kUnitNothing, true);
         }
         if (i % 6 == 0) {
             const Vec3 r = Normalised(Vec3{u(rng), u(rng), u(rng)});

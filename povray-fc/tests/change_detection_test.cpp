@@ -174,3 +174,22 @@ TEST(ChangeDetection, AnyObjectChangeChangesTheOrderAndNoChangeDoesNot) {
 
 }  // namespace
 }  // namespace povrayfc
+
+namespace povrayfc {
+namespace {
+
+TEST(ChangeDetection, ARecolouredUnitKeepsItsShadowsOnlyWhileItStaysOpaque) {
+    UnitSignature opaque = Unit(10, 100, 0), recoloured = Unit(11, 100, 0), glassy = Unit(12, 100, 0);
+    opaque.opaque = recoloured.opaque = true;
+    const SceneSignature a = Scene({opaque});
+    const FrameChange kept = CompareFrames(Frame(), a, Frame(), Scene({recoloured}), false);
+    ASSERT_EQ(kept.vanished, std::vector<std::uint32_t>{0});
+    EXPECT_EQ(kept.shadowsKept, std::vector<std::uint8_t>{1});
+    const FrameChange lost = CompareFrames(Frame(), a, Frame(), Scene({glassy}), false);
+    EXPECT_EQ(lost.shadowsKept, std::vector<std::uint8_t>{0});
+    const FrameChange moved = CompareFrames(Frame(), a, Frame(), Scene({Unit(13, 130, 4)}), false);
+    EXPECT_EQ(moved.shadowsKept, std::vector<std::uint8_t>{0});
+}
+
+}  // namespace
+}  // namespace povrayfc

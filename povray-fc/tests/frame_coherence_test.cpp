@@ -780,3 +780,60 @@ TEST_F(FrameCoherenceRun, AMovedUnitIsMetAtItsNewPlaceNotAtItsOld) {
 
 }  // namespace
 }  // namespace povrayfc
+
+namespace povrayfc {
+namespace {
+
+// One 4x4 block: each sample a camera ray ending on unit 1 and, from there, a shadow test
+// that unit 0 (an opaque blocker, or a glass pane passed) answered.
+int RenderShadowedBlock(int frame, const SceneSignature &sig, bool opaqueBlocker) {
+    FrameCoherence &fc = FrameCoherence::Get();
+    PublishSceneSignature(kScene, sig);
+    fc.BeginFrame(true, ToySetup(frame), kScene, {});
+    BlockTracer tracer(fc.Plan());
+    int traced = 0;
+    if (!tracer.Begin(0, 0, 0, kBlock - 1, kBlock - 1)) {
+        for (int y = 0; y < kBlock; ++y)
+            for (int x = 0; x < kBlock; ++x) {
+                float c[5] = {0, 0, 0, 0, 0};
+                if (tracer.Reuse(x, y, c)) continue;
+                tracer.BeginSample();
+                const double o[3] = {double(x), double(y), 0}, d[3] = {0, 0, 1};
+                RecordRaySegment(o, d, 5.0, 1);
+                {
+                    const double p[3] = {double(x), double(y), 5}, up[3] = {0, 1, 0};
+                    const double depth = 50.0;
+                    ShadowSegmentRecord shadow(p, up, depth);  // recorded when it goes
+                    if (opaqueBlocker)
+                        shadow.BlockedAt(10.0, 0, true);
+                    else
+                        shadow.PassedAt(10.0, 0);
+                }
+                tracer.EndSample(x, y, c);
+                ++traced;
+            }
+        EndBlockInBlack(tracer);
+    }
+    fc.EndFrame(0);
+    return traced;
+}
+
+SceneSignature BlockerScene(std::uint64_t blockerHash, bool blockerOpaque) {
+    SceneSignature s = UnitsScene({blockerHash, 2}, {11, 12}, {0, 100});
+    s.units[0].opaque = blockerOpaque;
+    return s;
+}
+
+TEST_F(FrameCoherenceRun, ARecolouredOpaqueBlockerKeepsItsShadowsAndAGlassPaneDoesNot) {
+    // Invariant: a shadow test an opaque surface answered is dark whatever its colour; one
+    // that passed a transparent surface carries its colour.
+    EXPECT_EQ(RenderShadowedBlock(1, BlockerScene(1, true), true), 16);
+    EXPECT_EQ(RenderShadowedBlock(2, BlockerScene(3, true), true), 0);   // recoloured, still opaque
+    EXPECT_EQ(RenderShadowedBlock(3, BlockerScene(4, false), true), 16); // now it lets light through
+    SetUp();
+    EXPECT_EQ(RenderShadowedBlock(1, BlockerScene(1, true), false), 16);
+    EXPECT_EQ(RenderShadowedBlock(2, BlockerScene(3, true), false), 16);  // the light passed it
+}
+
+}  // namespace
+}  // namespace povrayfc

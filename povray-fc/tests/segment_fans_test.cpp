@@ -50,7 +50,7 @@ RecordedBlock BlockRays(std::mt19937_64 &rng) {
         {
             const double po[3] = {p.x, p.y, p.z}, ld[3] = {l.x, l.y, l.z};
             ShadowSegmentRecord shadow(po, ld, dist);
-            if (i % 5 == 0) shadow.BlockedAt(dist * (0.5 + 0.4 * u(rng)), kUnitNothing);
+            if (i % 5 == 0) shadow.BlockedAt(dist * (0.5 + 0.4 * u(rng)), kUnitNothing, true);
         }
         if (i % 7 == 0) {
             const Vec3 r = Normalised(Vec3{u(rng), u(rng), u(rng)});

@@ -34,11 +34,15 @@ struct FrameChange {
     // order): POV-Ray's bounding tree, and with it which of two surfaces tied in depth it
     // meets first, may differ (tie_watch.h).
     bool orderChanged = false;
-    // Per unit of this frame: the unit of the last frame it continues unchanged (its index
-    // there), or kNew.
+    // Per unit of this frame: the unit of the last frame it continues (its index there):
+    // unchanged, or with the same geometry (its texture or interior changed; that one is
+    // also in `vanished`); kNew for a unit whose shape is new.
     std::vector<std::uint32_t> continues;
-    // The last frame's units that changed or vanished (their indices there).
+    // The last frame's units that changed or vanished (their indices there), and, for each,
+    // whether the shadow tests its opaque surfaces answered still hold: a unit of this frame
+    // has its shape and is opaque (its texture alone changed).
     std::vector<std::uint32_t> vanished;
+    std::vector<std::uint8_t> shadowsKept;
     // The hulls of this frame's units whose geometry is new.
     std::vector<Hull> hulls;
 

@@ -42,8 +42,12 @@ struct FramePlan {
     // This frame's unit ids (unit_ids.h), by the index the parser wrote into the objects.
     const std::uint32_t *unitIds = nullptr;
     std::size_t unitCount = 0;
-    // By unit id: the unit changed or vanished this frame, so a segment that ended on it is
-    // dirty; and the UnitMaskBit of every such id.
+    // By unit id: whether the unit changed or vanished this frame, so that a segment that
+    // ended on it is dirty; and the UnitMaskBit of every such id.
+    static constexpr std::uint8_t kUnitKept = 0;
+    static constexpr std::uint8_t kUnitRecoloured = 1;  // same shape, still opaque: shadow
+                                                        // tests its surfaces darkened hold
+    static constexpr std::uint8_t kUnitChanged = 2;
     const std::vector<std::uint8_t> *changedUnits = nullptr;
     std::uint64_t changedUnitMask = 0;
     // The ordered list of the scene's objects differs from the last frame's (something

@@ -119,14 +119,16 @@ class SampleRecorder {
         deep_ |= fan == FanApexes::kLoose;
     }
     // A shadow ray towards the light point `aim` (reaching it, or stopped short by tmax).
+    // `opaqueBlocker`: an opaque surface of `unit` ended the test (kOpaqueBlocker).
     void AddAimed(const double origin[3], const double direction[3], double tmax, const double aim[3],
-                  std::uint32_t unit) {
+                  std::uint32_t unit, bool opaqueBlocker = false) {
         Segment s;
         if (!MakeSegment(origin, direction, tmax, s)) {
             everything_ = true;
             return;
         }
         s.unit = UnitId(unit);
+        if (opaqueBlocker && s.unit != Segment::kNoUnit) s.unit |= Segment::kOpaqueBlocker;
         segments_->push_back(s);
         fanOf_->push_back(apexes_->AimFan(aim, deep_));
     }
@@ -150,7 +152,7 @@ class SampleRecorder {
     // gave no unit makes the sample depend on everything.
     std::uint32_t UnitId(std::uint32_t unit) {
         if (unit == kUnitNothing) return Segment::kNoUnit;
-        if (unit < unitCount_) return unitIds_[unit];
+        if (unit < unitCount_ && unitIds_[unit] < Segment::kOpaqueBlocker) return unitIds_[unit];
         everything_ = true;
         return Segment::kNoUnit;
     }
@@ -196,7 +198,7 @@ class ShadowSegmentRecord {
     }
     ~ShadowSegmentRecord() {
         if (!recorder_) return;
-        recorder_->AddAimed(origin_, direction_, blocked_ ? blockedAt_ : depth_, aim_, blocker_);
+        recorder_->AddAimed(origin_, direction_, blocked_ ? blockedAt_ : depth_, aim_, blocker_, opaque_);
     }
     ShadowSegmentRecord(const ShadowSegmentRecord &) = delete;
     ShadowSegmentRecord &operator=(const ShadowSegmentRecord &) = delete;
@@ -206,12 +208,15 @@ class ShadowSegmentRecord {
     void PassedAt(double distance, std::uint32_t unit) {
         if (recorder_) recorder_->AddAimed(origin_, direction_, distance, aim_, unit);
     }
-    // A fully opaque object (unit `unit`) at `distance` from the current origin answered.
-    void BlockedAt(double distance, std::uint32_t unit) {
+    // A blocker (unit `unit`) at `distance` from the current origin answered the test;
+    // `opaque`: POV-Ray took the surface there for opaque without looking at its texture
+    // (its OPAQUE_FLAG), so only the unit's shape and its staying opaque matter.
+    void BlockedAt(double distance, std::uint32_t unit, bool opaque) {
         if (distance < 0.0) return;
         blocked_ = true;
         blockedAt_ = distance;
         blocker_ = unit;
+        opaque_ = opaque;
     }
 
   private:
@@ -222,6 +227,7 @@ class ShadowSegmentRecord {
     bool blocked_ = false;
     double blockedAt_ = 0.0;
     std::uint32_t blocker_ = kUnitNothing;
+    bool opaque_ = false;
 };
 
 // Routes this thread's RecordRaySegment() calls into `recorder` until StopRecordingRays().

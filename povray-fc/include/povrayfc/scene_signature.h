@@ -51,6 +51,9 @@ struct UnitSignature {
     // The camera is inside it (or, with focal blur, may be): camera rays start with it as
     // their medium, so a change of it reaches every camera ray.
     bool containsCamera = false;
+    // Every surface of it is opaque to shadow tests whatever its texture (POV-Ray's
+    // OPAQUE_FLAG on each object it is made of).
+    bool opaque = false;
 };
 
 struct SceneSignature {

@@ -15,13 +15,19 @@ namespace povrayfc {
 // precision loses no exactness, only a hair of tightness.
 struct Segment {
     static constexpr std::uint32_t kNoUnit = 0xffffffffu;  // it ended on nothing (sky, light)
+    // With a unit id: a shadow test that an opaque surface of the unit answered (dark,
+    // whatever its colour: only the unit's shape and its staying opaque matter).
+    static constexpr std::uint32_t kOpaqueBlocker = 0x80000000u;
 
     float origin[3];
     float direction[3];
     float length;  // in units of direction; +infinity for a ray that hit nothing
     // The id (unit_ids.h) of what the ray ended on: the surface it hit, the transparent
-    // object a shadow ray passed there, or the opaque blocker of a shadow test.
+    // object a shadow ray passed there, or the blocker of a shadow test (kOpaqueBlocker
+    // added when the blocker was opaque); kNoUnit when nothing.
     std::uint32_t unit;
+
+    std::uint32_t UnitId() const { return unit & ~kOpaqueBlocker; }
 };
 
 // The segment of a traced ray, origin + t * direction for t in [0, tmax], in single

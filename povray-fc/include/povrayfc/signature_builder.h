@@ -55,6 +55,8 @@ public:
     void SetUnitCapsule(std::uint32_t unit, const Capsule &capsule);
     // The camera may be inside the unit (set once the camera is known, before Finish).
     void SetUnitContainsCamera(std::uint32_t unit);
+    // Every object the unit is made of is opaque (UnitSignature::opaque).
+    void SetUnitOpaque(std::uint32_t unit);
     std::size_t UnitCount() const { return signature_.units.size(); }
     const UnitSignature &Unit(std::uint32_t unit) const { return signature_.units[unit]; }
 
