@@ -124,6 +124,7 @@ bool BlockTracer::Begin(std::uint32_t serial, int left, int top, int right, int 
 
     plan.store->Touch(serial);
     old_ = plan.store->Find(serial);
+    leftOut_ = old_ == nullptr && plan.store->LeftOut(serial);
     if (old_ && (!old_->Covers(left, top, right, bottom) || old_->opaque != !record_)) old_ = nullptr;
     if (old_ && plan.everythingDirty) old_ = nullptr;
     if (!old_) return false;
@@ -359,10 +360,12 @@ void BlockTracer::End() {
     plan.counters->tracedPixels += traced;
     plan.counters->reusedPixels += tracedPixels_.size() - traced;
     plan.counters->tracedSamples += tracedSamples_;
+    if (leftOut_) plan.counters->unrecordedSamples += tracedSamples_;
     plan.counters->reusedSamples += reusedSamples_;
     plan.counters->replayedBlocks += 1;
 
     if (record_ && old_ && UpdateInPlace()) {
+        if (!plan.store->Keep(serial_)) ++plan.counters->overBudgetBlocks;
         old_ = nullptr;
         active_ = false;
         endedActive_ = true;
@@ -395,7 +398,7 @@ void BlockTracer::End() {
         }
     }
     old_ = nullptr;
-    plan.store->Put(serial_, std::move(record));
+    if (!plan.store->Put(serial_, std::move(record))) ++plan.counters->overBudgetBlocks;
     active_ = false;
     endedActive_ = true;
 }

@@ -29,32 +29,23 @@ FrameCoherence &FrameCoherence::Get() {
 }
 
 void FrameCoherence::Forget() {
-    fullFrameSeconds_ = 0.0;
+    fullFrameRays_ = 0.0;
     store_.reset();
     haveLast_ = false;
     policy_.Reset();
 }
 
-void FrameCoherence::NewStore(const FrameSetup &setup) {
-    CheckMemory(setup);
-    store_ = std::make_unique<SampleStore>(BlockCount(setup));
+std::size_t FrameCoherence::DefaultBudgetBytes() {
+    const double pages = double(sysconf(_SC_PHYS_PAGES)), pageSize = double(sysconf(_SC_PAGESIZE));
+    if (!(pages > 0 && pageSize > 0)) return std::size_t(1) << 30;
+    return std::size_t(0.5 * pages * pageSize);
 }
 
-// Refuses, with a one-line message naming the option, a render area whose store could not
-// fit: far better than the render running out of memory half way.
-void FrameCoherence::CheckMemory(const FrameSetup &setup) {
-    const double pixels = double(std::max(0, setup.AreaWidth())) * double(std::max(0, setup.AreaHeight()));
-    const double needed = pixels * double(kMinStoreBytesPerPixel);
-    const double pages = double(sysconf(_SC_PHYS_PAGES)), pageSize = double(sysconf(_SC_PAGESIZE));
-    const double available = pages > 0 && pageSize > 0 ? pages * pageSize : 0;
-    if (available > 0 && needed > 0.5 * available) {
-        char message[256];
-        std::snprintf(message, sizeof message,
-                      "Frame_Coherence: a %dx%d render area needs at least %.0f GiB for fc's store, more than half of "
-                      "this machine's %.0f GiB; render it with Frame_Coherence=off or a smaller area",
-                      setup.AreaWidth(), setup.AreaHeight(), needed / 1073741824.0, available / 1073741824.0);
-        throw std::runtime_error(message);
-    }
+// A store within the budget (Frame_Coherence_Memory, or half of the machine's memory):
+// past it, blocks are traced in full rather than the process running out of memory.
+void FrameCoherence::NewStore(const FrameSetup &setup) {
+    const std::size_t budget = setup.memoryBudgetBytes > 0 ? std::size_t(setup.memoryBudgetBytes) : DefaultBudgetBytes();
+    store_ = std::make_unique<SampleStore>(BlockCount(setup), budget);
 }
 
 void FrameCoherence::BeginFrame(bool enabled, const FrameSetup &setup, const void *sceneKey,
@@ -228,17 +219,21 @@ void FrameCoherence::EndFrame(std::uint64_t raysTraced) {
         // Blocks this frame did not render missed its changes.
         if (store_) store_->ForgetUntouched();
         current_.storeBytes = store_ ? store_->MemoryBytes() : 0;
+        current_.overBudgetBlocks = counters_.overBudgetBlocks.load();
         // A sequence's first frame (or the one recording resumed with) says nothing about
         // whether recording pays: counting it as a good frame reset the busy back-off, so
         // the back-off never grew.
         const bool coherent = !plan_.everythingDirty;
-        const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - frameStart_).count();
-        if (plan_.mode == FramePlan::Mode::kRecord && !coherent) fullFrameSeconds_ = seconds;
+        if (plan_.mode == FramePlan::Mode::kRecord && !coherent) fullFrameRays_ = double(raysTraced);
         if (plan_.mode == FramePlan::Mode::kRecord && (coherent || wastedIfFull_)) {
-            const double taken = double(current_.samplesTraced + current_.samplesReused);
-            const double samplesShare = coherent && taken > 0 ? double(current_.samplesTraced) / taken : 0.0;
+            // Blocks the memory budget left out are traced whether fc records or not: only
+            // the others say whether recording pays (and the rays, all blocks', do not).
+            const double unrecorded = double(counters_.unrecordedSamples.load());
+            const double taken = double(current_.samplesTraced + current_.samplesReused) - unrecorded;
+            const double samplesShare = coherent && taken > 0 ? (double(current_.samplesTraced) - unrecorded) / taken : 0.0;
+            const double fullRays = current_.overBudgetBlocks > 0 ? 0.0 : fullFrameRays_;
             policy_.AfterRecordedFrame(wastedIfFull_,
-                                       coherent ? RecordingPolicy::WorkShare(samplesShare, seconds, fullFrameSeconds_) : 0.0);
+                                       coherent ? RecordingPolicy::WorkShare(samplesShare, double(raysTraced), fullRays) : 0.0);
         }
     }
     bookkeeping_ += std::chrono::steady_clock::now() - start;

@@ -28,13 +28,16 @@ std::string FrameStats::LogLine() const {
                   bookkeepingSeconds,
                   double(storeBytes) / 1048576.0);
     std::string line = buf;
+    if (overBudgetBlocks > 0)
+        line += "; " + std::to_string(overBudgetBlocks) + " blocks past Frame_Coherence_Memory, traced in full when next rendered";
     if (!fullReason.empty()) line += "; full frame: " + fullReason;
     return line;
 }
 
 std::string FrameStats::CsvHeader() {
     return "frame,clock,coherent,full_reason,pixels,traced,reused,changed_hulls,samples_traced,"
-           "samples_reused,rays,bookkeeping_s,store_bytes,render_s,samples_tested,samples_cleared,changed_units";
+           "samples_reused,rays,bookkeeping_s,store_bytes,render_s,samples_tested,samples_cleared,changed_units,"
+           "over_budget_blocks";
 }
 
 std::string FrameStats::CsvRow() const {
@@ -43,7 +46,7 @@ std::string FrameStats::CsvRow() const {
     row << frame << ',' << clock << ',' << (coherent ? 1 : 0) << ',' << CsvQuoted(fullReason)
         << ',' << pixels << ',' << traced << ',' << reused << ',' << changedHulls << ',' << samplesTraced << ',' << samplesReused
         << ',' << rays << ',' << bookkeepingSeconds << ',' << storeBytes << ',' << renderSeconds << ','
-        << samplesTested << ',' << samplesCleared << ',' << changedUnits;
+        << samplesTested << ',' << samplesCleared << ',' << changedUnits << ',' << overBudgetBlocks;
     return row.str();
 }
 

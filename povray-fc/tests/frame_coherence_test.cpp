@@ -837,3 +837,57 @@ TEST_F(FrameCoherenceRun, ARecolouredOpaqueBlockerKeepsItsShadowsAndAGlassPaneDo
 
 }  // namespace
 }  // namespace povrayfc
+
+namespace povrayfc {
+namespace {
+
+TEST_F(FrameCoherenceRun, AStoreOverItsBudgetTracesTheBlocksLeftOutAndStaysExact) {
+    // Invariant: the store never holds more than its budget; the blocks it leaves out are
+    // traced in full, and every frame still equals its full render.
+    FrameCoherence &fc = FrameCoherence::Get();
+    std::size_t budget = 0;
+    for (int frame = 1; frame <= 6; ++frame) {
+        const ToyScene scene = Frame(0.4 * frame);
+        PublishSceneSignature(kScene, Signature(scene));
+        FrameSetup setup = ToySetup(frame);
+        setup.memoryBudgetBytes = 20000;  // most of the eight blocks' records, not all
+        fc.BeginFrame(true, setup, kScene, {});
+        FcResult r;
+        r.image.assign(std::size_t(kW) * kH * 5, 0.0f);
+        BlockTracer tracer(fc.Plan());
+        std::uint32_t serial = 0;
+        for (int by = 0; by < kH; by += kBlock)
+            for (int bx = 0; bx < kW; bx += kBlock, ++serial) {
+                const int right = bx + kBlock - 1, bottom = by + kBlock - 1;
+                if (tracer.Begin(serial, bx, by, right, bottom)) {
+                    for (int y = by; y <= bottom; ++y)
+                        for (int x = bx; x <= right; ++x) tracer.StoredPixel(x, y, &r.image[(std::size_t(y) * kW + x) * 5]);
+                    continue;
+                }
+                RenderBlock(bx, by, right, bottom,
+                            [&](double x, double y, float c[5]) {
+                                if (tracer.Reuse(x, y, c)) return;
+                                tracer.BeginSample();
+                                TraceToy(scene, x, y, c);
+                                tracer.EndSample(x, y, c);
+                            },
+                            r.image);
+                for (int y = by; y <= bottom; ++y)
+                    for (int x = bx; x <= right; ++x) tracer.SetPixel(x, y, &r.image[(std::size_t(y) * kW + x) * 5]);
+                tracer.End();
+            }
+        ASSERT_NE(fc.Plan().store, nullptr) << "frame " << frame;  // recording pays: never paused
+        budget = fc.Plan().store->BudgetBytes();
+        EXPECT_LE(fc.Plan().store->RecordBytes(), budget) << "frame " << frame;
+        fc.EndFrame(0);
+        EXPECT_EQ(r.image, RenderFull(scene)) << "frame " << frame;
+        EXPECT_GT(fc.LastStats().overBudgetBlocks, 0u) << "frame " << frame;
+        if (frame > 1) {
+            EXPECT_LT(fc.LastStats().traced, fc.LastStats().pixels) << "frame " << frame;
+        }
+    }
+    EXPECT_EQ(budget, 20000u);
+}
+
+}  // namespace
+}  // namespace povrayfc

@@ -22,10 +22,13 @@ struct FrameCounters {
     // Samples a change's cones reached: tested segment by segment, or found clean by the
     // clearance they kept from an earlier frame (change_drift.h).
     std::atomic<std::uint64_t> testedSamples{0}, clearedSamples{0};
+    // Blocks whose record the memory budget left out: traced in full when next rendered;
+    // and the samples traced in blocks it had left out.
+    std::atomic<std::uint64_t> overBudgetBlocks{0}, unrecordedSamples{0};
 
     void Reset() {
         tracedPixels = reusedPixels = tracedSamples = reusedSamples = reusedBlocks = replayedBlocks = 0;
-        testedSamples = clearedSamples = 0;
+        testedSamples = clearedSamples = overBudgetBlocks = unrecordedSamples = 0;
     }
 };
 

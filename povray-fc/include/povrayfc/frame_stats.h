@@ -25,6 +25,7 @@ struct FrameStats {
     std::uint64_t rays = 0;       // rays traced (POV-Ray's "Rays:" count)
     double bookkeepingSeconds = 0.0;  // change detection and statistics, outside the render threads
     std::uint64_t storeBytes = 0;     // stored samples, segments and pixels
+    std::uint64_t overBudgetBlocks = 0;  // blocks the memory budget left out of the store
     double renderSeconds = 0.0;       // wall time from fc's frame start to its end (tracing)
 
     // One human-readable line for the render log.
