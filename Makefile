@@ -82,6 +82,9 @@ pov_compile = PATH=$(CCACHE_PATH):$$PATH $(MAKE) -s --no-print-directory -C $(PO
 # The renderer's frame channel and frame control (frame-channel/): libframechannel.a.
 include $(TOP)/frame-channel/frame-channel.mk
 
+# Frame coherence's code that reads POV-Ray's objects (fc-scene/): libfcscene.a.
+include $(TOP)/fc-scene/fc-scene.mk
+
 # fc-image-writer (image-writer/), fc-master's helper that links POV-Ray.
 include $(TOP)/image-writer/image-writer.mk
 
@@ -100,7 +103,7 @@ $(POV_DSC): | deps
 
 # Unpack with Debian's own patches applied, then prepare it as debian/rules does.
 $(STAMPS)/unpacked: $(POV_DSC)
-	rm -rf $(POV_TREE) $(STAMPS)
+	rm -rf $(POV_TREE) $(STAMPS)/patched $(STAMPS)/configured
 	mkdir -p $(STAMPS)
 	dpkg-source --no-check -x $(POV_DSC) $(POV_TREE) >/dev/null
 	cd $(POV_TREE)/unix/config && for ax in *.m4; do \
@@ -166,14 +169,15 @@ $(BIN)/povrayfc-mask.so: $(LIB_BUILD)/CMakeCache.txt $(LIB_SOURCES) | $(SPEEDUPS
 # --- the binary --------------------------------------------------------------
 
 # POV-Ray's Makefiles do not know our libraries: relink when one is newer. The frame
-# channel's library needs the configured tree, so configure cannot link its test programs
-# with it: it joins the configured LIBS here.
+# channel's and fc-scene's libraries need the configured tree, so configure cannot link its
+# test programs with them: they join the configured LIBS here (fc-scene before the engine
+# it calls, which the configured LIBS name).
 $(BIN)/povray-fc: $(STAMPS)/patched $(STAMPS)/configured $(FC_LIB) $(SPEEDUPS_LIB) $(SPEEDUPS_SDL_LIB) \
-  $(FRAME_CHANNEL_LIB) FORCE
-	@for lib in $(FC_LIB) $(SPEEDUPS_LIB) $(SPEEDUPS_SDL_LIB) $(FRAME_CHANNEL_LIB); do \
+  $(FRAME_CHANNEL_LIB) $(FC_SCENE_LIB) FORCE
+	@for lib in $(FC_LIB) $(SPEEDUPS_LIB) $(SPEEDUPS_SDL_LIB) $(FRAME_CHANNEL_LIB) $(FC_SCENE_LIB); do \
 	  if [ -e $(POV_TREE)/unix/povray ] && [ $$lib -nt $(POV_TREE)/unix/povray ]; then rm $(POV_TREE)/unix/povray; fi; done
 	PATH=$(CCACHE_PATH):$$PATH $(MAKE) -C $(POV_TREE) -j$(JOBS) \
-	  LIBS="$(FRAME_CHANNEL_LIB) $$(sed -n 's/^LIBS = //p' $(POV_TREE)/unix/Makefile)" >$(BUILD)/povray-make.log 2>&1 \
+	  LIBS="$(FRAME_CHANNEL_LIB) $(FC_SCENE_LIB) $$(sed -n 's/^LIBS = //p' $(POV_TREE)/unix/Makefile)" >$(BUILD)/povray-make.log 2>&1 \
 	  || { tail -30 $(BUILD)/povray-make.log >&2; echo "make: POV-Ray build failed, see $(BUILD)/povray-make.log" >&2; exit 1; }
 	mkdir -p $(BIN)
 	if ! cmp -s $(POV_TREE)/unix/povray $@; then cp $(POV_TREE)/unix/povray $@.tmp && mv $@.tmp $@; fi

@@ -18,5 +18,5 @@ $(IMAGE_WRITER_OBJ): $(TOP)/image-writer/fc_image_writer.cpp $(TOP)/image-writer
 $(IMAGE_WRITER): $(IMAGE_WRITER_OBJ) $(BIN)/povray-fc
 	g++ $(POV_LDFLAGS) -Wl,--as-needed -pthread $(IMAGE_WRITER_OBJ) -o $@.tmp \
 	  -Wl,--start-group $(POV_TREE)/source/libpovray.a $(POV_TREE)/vfe/libvfe.a $(FRAME_CHANNEL_LIB) \
-	  $(FC_LIB) $(SPEEDUPS_LIB) -Wl,--end-group $$(sed -n 's/^LIBS = //p' $(POV_TREE)/unix/Makefile)
+	  $(FC_SCENE_LIB) $(FC_LIB) $(SPEEDUPS_LIB) -Wl,--end-group $$(sed -n 's/^LIBS = //p' $(POV_TREE)/unix/Makefile)
 	mv $@.tmp $@

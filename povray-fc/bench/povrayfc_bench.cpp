@@ -71,9 +71,9 @@ int main(int argc, char **argv) {
     const double record = MedianNs(n, [&] {
         segments.clear();
         fanOf.clear();
-        recorder.Begin(segments, fanOf, apexes);
+        recorder.Begin(segments, fanOf, apexes, nullptr, 0);
         StartRecordingRays(recorder);
-        for (const Ray &r : rays) RecordRaySegment(r.o, r.d, r.t);
+        for (const Ray &r : rays) RecordRaySegment(r.o, r.d, r.t, kUnitNothing);
         StopRecordingRays();
     });
     std::printf("record a ray segment:            %6.2f ns\n", record);

@@ -55,6 +55,28 @@ bool SampleIsDirty(const StoredSample &s, const BlockRecord &record, const Chang
     return false;
 }
 
+// Whether one of the sample's segments ended on a unit that changed or vanished this frame.
+// (FramePlan::changedUnits by id: a shadow test an opaque surface answered holds while
+// that unit keeps its shape and stays opaque.)
+bool EndsOnChangedUnit(const StoredSample &s, const BlockRecord &record, const std::vector<std::uint8_t> &changed) {
+    const Segment *segment = record.segments.data() + s.firstSegment;
+    for (std::uint32_t i = 0; i < s.segmentCount; ++i) {
+        if (segment[i].unit == Segment::kNoUnit) continue;
+        const std::uint32_t unit = segment[i].UnitId();
+        if (unit >= changed.size() || changed[unit] == FramePlan::kUnitKept) continue;
+        if (changed[unit] == FramePlan::kUnitChanged || !(segment[i].unit & Segment::kOpaqueBlocker)) return true;
+    }
+    return false;
+}
+
+// The UnitMaskBit of every unit the segments [first, first + count) ended on.
+std::uint64_t UnitMaskOf(const Segment *first, std::size_t count) {
+    std::uint64_t mask = 0;
+    for (std::size_t i = 0; i < count; ++i)
+        if (first[i].unit != Segment::kNoUnit) mask |= UnitMaskBit(first[i].UnitId());
+    return mask;
+}
+
 // A clearance (>= 0, rounded down to a float whose low mantissa bits are cleared) and the
 // bundle classes it holds for, in one word (StoredSample::clearance).
 constexpr std::uint32_t kClassMask = (std::uint32_t(1) << BlockHulls::kClassBits) - 1;
@@ -102,13 +124,17 @@ bool BlockTracer::Begin(std::uint32_t serial, int left, int top, int right, int 
 
     plan.store->Touch(serial);
     old_ = plan.store->Find(serial);
+    leftOut_ = old_ == nullptr && plan.store->LeftOut(serial);
     if (old_ && (!old_->Covers(left, top, right, bottom) || old_->opaque != !record_)) old_ = nullptr;
     if (old_ && plan.everythingDirty) old_ = nullptr;
     if (!old_) return false;
 
-    // A new order of the scene's objects dirties the order-sensitive samples alone.
+    // A new order of the scene's objects dirties the order-sensitive samples alone; a changed
+    // unit, the samples with a segment that ended on it.
     const bool orderMatters = plan.orderChanged && old_->hasOrderSensitive;
-    const bool nothingChanged = (plan.changes == nullptr || plan.changes->Empty()) && !orderMatters;
+    const bool unitsChanged = plan.changedUnits != nullptr && (old_->unitMask & plan.changedUnitMask) != 0;
+    const bool nothingChanged =
+        (plan.changes == nullptr || plan.changes->Empty()) && !orderMatters && !unitsChanged;
     if (nothingChanged) {
         plan.counters->reusedPixels += area;
         plan.counters->reusedSamples += old_->samples.size();
@@ -126,7 +152,7 @@ bool BlockTracer::Begin(std::uint32_t serial, int left, int top, int right, int 
     if (!old_->fansBuilt) BuildRecordFans(*old_);
     const BlockHulls reach = FindBlockHulls(old_->fans, *plan.changes);
     bool anyDirty = false;
-    if (reach.Any() || old_->hasEverything || orderMatters) {
+    if (reach.Any() || old_->hasEverything || orderMatters || unitsChanged) {
         // The block's cones reach a change (or a sample depends on everything): narrow
         // it down to the groups of samples whose own cones reach it.
         groupReach_.resize(old_->groupFans.size());
@@ -141,7 +167,8 @@ bool BlockTracer::Begin(std::uint32_t serial, int left, int top, int right, int 
         std::uint64_t tested = 0, cleared = 0;
         for (std::size_t i = 0; i < n; ++i) {
             StoredSample &s = old_->samples[i];
-            bool dirty = s.segmentCount == StoredSample::kEverything || (orderMatters && s.orderSensitive);
+            bool dirty = s.segmentCount == StoredSample::kEverything || (orderMatters && s.orderSensitive) ||
+                         (unitsChanged && EndsOnChangedUnit(s, *old_, *plan.changedUnits));
             if (!dirty && groupReaches_[s.group]) {
                 // Clean by what it kept, while the changes stay near where they were then and
                 // reach no class of its segments it did not test; else tested, keeping what
@@ -244,7 +271,7 @@ bool BlockTracer::Reuse(double x, double y, float rgbft[5]) {
 
 void BlockTracer::BeginSample() {
     if (!active_ || !record_) return;
-    recorder_.Begin(next_.segments, nextFanOf_, next_.apexes);
+    recorder_.Begin(next_.segments, nextFanOf_, next_.apexes, plan_->unitIds, plan_->unitCount);
     StartRecordingRays(recorder_);
 }
 
@@ -333,10 +360,12 @@ void BlockTracer::End() {
     plan.counters->tracedPixels += traced;
     plan.counters->reusedPixels += tracedPixels_.size() - traced;
     plan.counters->tracedSamples += tracedSamples_;
+    if (leftOut_) plan.counters->unrecordedSamples += tracedSamples_;
     plan.counters->reusedSamples += reusedSamples_;
     plan.counters->replayedBlocks += 1;
 
     if (record_ && old_ && UpdateInPlace()) {
+        if (!plan.store->Keep(serial_)) ++plan.counters->overBudgetBlocks;
         old_ = nullptr;
         active_ = false;
         endedActive_ = true;
@@ -369,7 +398,7 @@ void BlockTracer::End() {
         }
     }
     old_ = nullptr;
-    plan.store->Put(serial_, std::move(record));
+    if (!plan.store->Put(serial_, std::move(record))) ++plan.counters->overBudgetBlocks;
     active_ = false;
     endedActive_ = true;
 }
@@ -392,6 +421,7 @@ void BlockTracer::GatherSegments(BlockRecord &record) {
         const Segment *first = (kept ? old_->segments.data() : next_.segments.data()) + s.firstSegment;
         const std::uint8_t *fans = (kept ? old_->fanOf.data() : nextFanOf_.data()) + s.firstSegment;
         record.segments.insert(record.segments.end(), first, first + s.segmentCount);
+        record.unitMask |= UnitMaskOf(first, s.segmentCount);
         record.fanOf.insert(record.fanOf.end(), fans, fans + s.segmentCount);
         if (!kept) {
             tracedSegments_.emplace_back(at, s.segmentCount);
@@ -436,6 +466,7 @@ bool BlockTracer::UpdateInPlace() {
             r.fanOf.resize(need);
         }
         std::copy_n(next_.segments.data() + traced.firstSegment, traced.segmentCount, r.segments.data() + at);
+        r.unitMask |= UnitMaskOf(next_.segments.data() + traced.firstSegment, traced.segmentCount);
         std::copy_n(nextFanOf_.data() + traced.firstSegment, traced.segmentCount, r.fanOf.data() + at);
         stored = traced;
         stored.firstSegment = std::uint32_t(at);

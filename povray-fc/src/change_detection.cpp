@@ -1,5 +1,5 @@
-// Change detection: render settings, camera, lights, global hashes, then objects as a
-// multiset of signatures.
+// Change detection: render settings, camera, lights, global hashes, then units matched by
+// hash (see change_detection.h).
 #include "povrayfc/change_detection.h"
 
 #include <unordered_map>
@@ -21,55 +21,31 @@ bool SameObjectOrder(const SceneSignature &a, const SceneSignature &b) {
     return true;
 }
 
-Hull ChildHull(const ChildSignature &child) {
-    return child.hasCapsule ? MakeHull(child.bounds, child.capsule) : MakeHull(child.bounds);
-}
+// A multiset of 64-bit keys: Take removes one element with the key and says which.
+class KeyedIndices {
+  public:
+    void Add(std::uint64_t key, std::uint32_t index) { map_[key].push_back(index); }
+    bool Take(std::uint64_t key, std::uint32_t &index) {
+        auto found = map_.find(key);
+        if (found == map_.end() || found->second.empty()) return false;
+        index = found->second.back();
+        found->second.pop_back();
+        return true;
+    }
+    template <class F>
+    void ForEachLeft(F f) const {
+        for (const auto &entry : map_)
+            for (std::uint32_t index : entry.second) f(index);
+    }
 
-// The hulls of the children that differ between two frames' versions of one CSG item (a
-// multiset of child hashes). A changed light of a light_group changes every other child
-// (it lights nothing else). Returns false when the change is not local to children (an
-// unbounded child changed): the caller takes the whole objects.
-bool AddChangedChildren(const ObjectSignature &before, const ObjectSignature &after, std::vector<Hull> &hulls) {
-    std::unordered_map<std::uint64_t, std::vector<const ChildSignature *>> old;
-    for (const ChildSignature &child : before.children) old[child.hash].push_back(&child);
-    std::vector<const ChildSignature *> differ;
-    for (const ChildSignature &child : after.children) {
-        auto found = old.find(child.hash);
-        if (found != old.end() && !found->second.empty()) {
-            found->second.pop_back();
-            continue;
-        }
-        differ.push_back(&child);
-    }
-    for (const auto &entry : old)
-        for (const ChildSignature *child : entry.second) differ.push_back(child);
-    bool lightChanged = false;
-    for (const ChildSignature *child : differ) {
-        if (child->isLight) {
-            lightChanged = true;
-            continue;
-        }
-        if (child->infinite) return false;
-    }
-    std::vector<Hull> found;
-    if (lightChanged) {
-        for (const ObjectSignature *object : {&before, &after})
-            for (const ChildSignature &child : object->children) {
-                if (child.isLight) continue;
-                if (child.infinite) return false;
-                found.push_back(ChildHull(child));
-            }
-    } else {
-        for (const ChildSignature *child : differ) found.push_back(ChildHull(*child));
-    }
-    hulls.insert(hulls.end(), found.begin(), found.end());
-    return true;
-}
+  private:
+    std::unordered_map<std::uint64_t, std::vector<std::uint32_t>> map_;
+};
 
 }  // namespace
 
-Hull ObjectHull(const ObjectSignature &object) {
-    return object.hasCapsule ? MakeHull(object.bounds, object.capsule) : MakeHull(object.bounds);
+Hull UnitHull(const UnitSignature &unit) {
+    return unit.hasCapsule ? MakeHull(unit.bounds, unit.capsule) : MakeHull(unit.bounds);
 }
 
 FrameChange CompareFrames(const FrameSetup &lastSetup, const SceneSignature &last, const FrameSetup &setup,
@@ -103,52 +79,47 @@ FrameChange CompareFrames(const FrameSetup &lastSetup, const SceneSignature &las
     // list of hashes gives the same tree.
     change.orderChanged = !SameObjectOrder(last, now);
 
-    // Objects are matched as a multiset of signatures: what vanished changed at its old
-    // place, what appeared at its new one.
-    std::unordered_map<std::uint64_t, std::vector<const ObjectSignature *>> before;
-    for (const ObjectSignature &object : last.objects) before[object.hash].push_back(&object);
-    std::vector<const ObjectSignature *> changed;
-    for (const ObjectSignature &object : now.objects) {
-        auto found = before.find(object.hash);
-        if (found != before.end() && !found->second.empty()) {
-            found->second.pop_back();
-            continue;
-        }
-        changed.push_back(&object);
-    }
-    std::vector<const ObjectSignature *> vanished;
-    for (const auto &entry : before)
-        for (const ObjectSignature *object : entry.second) vanished.push_back(object);
-    if (changed.empty() && vanished.empty()) return change;
+    // Units are matched as a multiset of hashes.
+    KeyedIndices before;
+    for (std::uint32_t i = 0; i < last.units.size(); ++i) before.Add(last.units[i].hash, i);
+    change.continues.assign(now.units.size(), FrameChange::kNew);
+    std::vector<std::uint32_t> appeared;
+    for (std::uint32_t i = 0; i < now.units.size(); ++i)
+        if (!before.Take(now.units[i].hash, change.continues[i])) appeared.push_back(i);
+    before.ForEachLeft([&](std::uint32_t index) { change.vanished.push_back(index); });
+    if (appeared.empty() && change.vanished.empty() && !change.orderChanged) return change;
 
     if (photons) {
         change.fullReason = "photons (the photon map depends on every object)";
         return change;
     }
-    // A CSG item whose shell is unchanged changed only in its changed children: pair each
-    // appeared CSG with a vanished one of the same shell (any pairing is conservative).
-    std::vector<const ObjectSignature *> whole;
-    std::vector<bool> paired(vanished.size(), false);
-    for (const ObjectSignature *object : changed) {
-        std::size_t match = vanished.size();
-        if (!object->children.empty())
-            for (std::size_t k = 0; k < vanished.size() && match == vanished.size(); ++k)
-                if (!paired[k] && !vanished[k]->children.empty() && vanished[k]->shell == object->shell) match = k;
-        if (match == vanished.size() || !AddChangedChildren(*vanished[match], *object, change.hulls)) {
-            whole.push_back(object);
-            if (match != vanished.size()) whole.push_back(vanished[match]);
+    // Camera rays start in the media and refraction of whatever holds the camera: a unit
+    // that does (or did) and changed reaches every camera ray.
+    for (std::uint32_t i : change.vanished)
+        if (last.units[i].containsCamera) change.fullReason = "an object around the camera changed";
+    for (std::uint32_t i : appeared)
+        if (now.units[i].containsCamera) change.fullReason = "an object around the camera changed";
+    if (!change.fullReason.empty()) return change;
+
+    // A new unit whose geometry a vanished one had changed in appearance alone: no ray that
+    // did not end on the old one meets it, and an opaque one still darkens the shadow tests
+    // the old one answered. Any other new unit is tested by its hull.
+    KeyedIndices oldShapes;
+    change.shadowsKept.assign(change.vanished.size(), 0);
+    for (std::uint32_t k = 0; k < change.vanished.size(); ++k) oldShapes.Add(last.units[change.vanished[k]].geometry, k);
+    for (std::uint32_t i : appeared) {
+        std::uint32_t same;
+        if (oldShapes.Take(now.units[i].geometry, same)) {
+            change.shadowsKept[same] = now.units[i].opaque ? 1 : 0;
+            change.continues[i] = change.vanished[same];
+            continue;
         }
-        if (match != vanished.size()) paired[match] = true;
-    }
-    for (std::size_t k = 0; k < vanished.size(); ++k)
-        if (!paired[k]) whole.push_back(vanished[k]);
-    for (const ObjectSignature *object : whole) {
-        if (object->infinite) {
-            change.fullReason = "an unbounded object changed";
+        if (now.units[i].infinite) {
+            change.fullReason = "an unbounded object changed shape";
             change.hulls.clear();
             return change;
         }
-        change.hulls.push_back(ObjectHull(*object));
+        change.hulls.push_back(UnitHull(now.units[i]));
     }
     return change;
 }

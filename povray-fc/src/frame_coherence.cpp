@@ -29,32 +29,23 @@ FrameCoherence &FrameCoherence::Get() {
 }
 
 void FrameCoherence::Forget() {
-    fullFrameSeconds_ = 0.0;
+    fullFrameRays_ = 0.0;
     store_.reset();
     haveLast_ = false;
     policy_.Reset();
 }
 
-void FrameCoherence::NewStore(const FrameSetup &setup) {
-    CheckMemory(setup);
-    store_ = std::make_unique<SampleStore>(BlockCount(setup));
+std::size_t FrameCoherence::DefaultBudgetBytes() {
+    const double pages = double(sysconf(_SC_PHYS_PAGES)), pageSize = double(sysconf(_SC_PAGESIZE));
+    if (!(pages > 0 && pageSize > 0)) return std::size_t(1) << 30;
+    return std::size_t(0.5 * pages * pageSize);
 }
 
-// Refuses, with a one-line message naming the option, a render area whose store could not
-// fit: far better than the render running out of memory half way.
-void FrameCoherence::CheckMemory(const FrameSetup &setup) {
-    const double pixels = double(std::max(0, setup.AreaWidth())) * double(std::max(0, setup.AreaHeight()));
-    const double needed = pixels * double(kMinStoreBytesPerPixel);
-    const double pages = double(sysconf(_SC_PHYS_PAGES)), pageSize = double(sysconf(_SC_PAGESIZE));
-    const double available = pages > 0 && pageSize > 0 ? pages * pageSize : 0;
-    if (available > 0 && needed > 0.5 * available) {
-        char message[256];
-        std::snprintf(message, sizeof message,
-                      "Frame_Coherence: a %dx%d render area needs at least %.0f GiB for fc's store, more than half of "
-                      "this machine's %.0f GiB; render it with Frame_Coherence=off or a smaller area",
-                      setup.AreaWidth(), setup.AreaHeight(), needed / 1073741824.0, available / 1073741824.0);
-        throw std::runtime_error(message);
-    }
+// A store within the budget (Frame_Coherence_Memory, or half of the machine's memory):
+// past it, blocks are traced in full rather than the process running out of memory.
+void FrameCoherence::NewStore(const FrameSetup &setup) {
+    const std::size_t budget = setup.memoryBudgetBytes > 0 ? std::size_t(setup.memoryBudgetBytes) : DefaultBudgetBytes();
+    store_ = std::make_unique<SampleStore>(BlockCount(setup), budget);
 }
 
 void FrameCoherence::BeginFrame(bool enabled, const FrameSetup &setup, const void *sceneKey,
@@ -168,12 +159,16 @@ void FrameCoherence::PlanFrame(const FrameSetup &setup, const SceneSignature &si
         current_.fullReason = change.fullReason;
         // A new sequence after the first frame is full because something global changed.
         wastedIfFull_ = change.fullReason != "first frame" && change.fullReason != "recording resumed";
+        NumberUnits(change, signature.units.size(), true);
     } else if (!change.fullReason.empty()) {
         plan_.everythingDirty = true;
         current_.fullReason = change.fullReason;
         wastedIfFull_ = true;
+        NumberUnits(change, signature.units.size(), true);
     } else {
         plan_.everythingDirty = false;
+        NumberUnits(change, signature.units.size(), false);
+        current_.changedUnits = changedIds_.size();
         changes_ = ChangeIndex(std::move(change.hulls), setup.gridResolution);
         plan_.changes = &changes_;
         plan_.orderChanged = change.orderChanged;
@@ -181,6 +176,30 @@ void FrameCoherence::PlanFrame(const FrameSetup &setup, const SceneSignature &si
         if (!changes_.Empty() && changes_.Bounds().IsFinite()) plan_.changeStamp = drift_.Begin(changes_.Bounds());
         plan_.drift = &drift_;
     }
+}
+
+void FrameCoherence::NumberUnits(const FrameChange &change, std::size_t unitCount, bool afresh) {
+    for (std::uint32_t id : changedIds_) changedUnits_[id] = 0;
+    changedIds_.clear();
+    plan_.changedUnitMask = 0;
+    if (afresh) {
+        unitIds_.Reset(unitCount);
+    } else {
+        std::vector<std::uint32_t> released;
+        unitIds_.Advance(change.continues, change.vanished, released);
+    }
+    if (changedUnits_.size() < unitIds_.Limit()) changedUnits_.resize(unitIds_.Limit(), 0);
+    for (std::size_t k = 0; !afresh && k < change.vanished.size(); ++k) {
+        const std::uint32_t id = unitIds_.Previous(change.vanished[k]);
+        if (id == UnitIds::kNone || id >= changedUnits_.size()) continue;
+        const bool shadowsKept = k < change.shadowsKept.size() && change.shadowsKept[k];
+        changedUnits_[id] = shadowsKept ? FramePlan::kUnitRecoloured : FramePlan::kUnitChanged;
+        changedIds_.push_back(id);
+        plan_.changedUnitMask |= UnitMaskBit(id);
+    }
+    plan_.unitIds = unitIds_.Current().data();
+    plan_.unitCount = unitIds_.Current().size();
+    plan_.changedUnits = &changedUnits_;
 }
 
 void FrameCoherence::EndFrame(std::uint64_t raysTraced) {
@@ -200,17 +219,21 @@ void FrameCoherence::EndFrame(std::uint64_t raysTraced) {
         // Blocks this frame did not render missed its changes.
         if (store_) store_->ForgetUntouched();
         current_.storeBytes = store_ ? store_->MemoryBytes() : 0;
+        current_.overBudgetBlocks = counters_.overBudgetBlocks.load();
         // A sequence's first frame (or the one recording resumed with) says nothing about
         // whether recording pays: counting it as a good frame reset the busy back-off, so
         // the back-off never grew.
         const bool coherent = !plan_.everythingDirty;
-        const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - frameStart_).count();
-        if (plan_.mode == FramePlan::Mode::kRecord && !coherent) fullFrameSeconds_ = seconds;
+        if (plan_.mode == FramePlan::Mode::kRecord && !coherent) fullFrameRays_ = double(raysTraced);
         if (plan_.mode == FramePlan::Mode::kRecord && (coherent || wastedIfFull_)) {
-            const double taken = double(current_.samplesTraced + current_.samplesReused);
-            const double samplesShare = coherent && taken > 0 ? double(current_.samplesTraced) / taken : 0.0;
+            // Blocks the memory budget left out are traced whether fc records or not: only
+            // the others say whether recording pays (and the rays, all blocks', do not).
+            const double unrecorded = double(counters_.unrecordedSamples.load());
+            const double taken = double(current_.samplesTraced + current_.samplesReused) - unrecorded;
+            const double samplesShare = coherent && taken > 0 ? (double(current_.samplesTraced) - unrecorded) / taken : 0.0;
+            const double fullRays = current_.overBudgetBlocks > 0 ? 0.0 : fullFrameRays_;
             policy_.AfterRecordedFrame(wastedIfFull_,
-                                       coherent ? RecordingPolicy::WorkShare(samplesShare, seconds, fullFrameSeconds_) : 0.0);
+                                       coherent ? RecordingPolicy::WorkShare(samplesShare, double(raysTraced), fullRays) : 0.0);
         }
     }
     bookkeeping_ += std::chrono::steady_clock::now() - start;

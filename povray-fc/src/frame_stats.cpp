@@ -21,19 +21,23 @@ std::string FrameStats::LogLine() const {
     const double percent = pixels ? 100.0 * double(traced) / double(pixels) : 0.0;
     std::snprintf(buf, sizeof buf,
                   "Frame coherence: frame %d: %llu of %llu pixels traced (%.1f%%), %llu reused, "
-                  "%llu samples traced, %llu reused, %llu changed hulls, bookkeeping %.3f s, store %.1f MiB",
+                  "%llu samples traced, %llu reused, %llu changed units, %llu new shapes, bookkeeping %.3f s, store %.1f MiB",
                   frame, (unsigned long long)traced, (unsigned long long)pixels, percent,
                   (unsigned long long)reused, (unsigned long long)samplesTraced,
-                  (unsigned long long)samplesReused, (unsigned long long)changedHulls, bookkeepingSeconds,
+                  (unsigned long long)samplesReused, (unsigned long long)changedUnits, (unsigned long long)changedHulls,
+                  bookkeepingSeconds,
                   double(storeBytes) / 1048576.0);
     std::string line = buf;
+    if (overBudgetBlocks > 0)
+        line += "; " + std::to_string(overBudgetBlocks) + " blocks past Frame_Coherence_Memory, traced in full when next rendered";
     if (!fullReason.empty()) line += "; full frame: " + fullReason;
     return line;
 }
 
 std::string FrameStats::CsvHeader() {
     return "frame,clock,coherent,full_reason,pixels,traced,reused,changed_hulls,samples_traced,"
-           "samples_reused,rays,bookkeeping_s,store_bytes,render_s,samples_tested,samples_cleared";
+           "samples_reused,rays,bookkeeping_s,store_bytes,render_s,samples_tested,samples_cleared,changed_units,"
+           "over_budget_blocks";
 }
 
 std::string FrameStats::CsvRow() const {
@@ -42,7 +46,7 @@ std::string FrameStats::CsvRow() const {
     row << frame << ',' << clock << ',' << (coherent ? 1 : 0) << ',' << CsvQuoted(fullReason)
         << ',' << pixels << ',' << traced << ',' << reused << ',' << changedHulls << ',' << samplesTraced << ',' << samplesReused
         << ',' << rays << ',' << bookkeepingSeconds << ',' << storeBytes << ',' << renderSeconds << ','
-        << samplesTested << ',' << samplesCleared;
+        << samplesTested << ',' << samplesCleared << ',' << changedUnits << ',' << overBudgetBlocks;
     return row.str();
 }
 

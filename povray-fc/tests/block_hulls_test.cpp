@@ -30,12 +30,12 @@ BlockRecord RecordedBlock(std::mt19937_64 &rng, double spread) {
     SampleRecorder recorder;
     StartRecordingRays(recorder);
     for (int i = 0; i < 300; ++i) {
-        recorder.Begin(record.segments, record.fanOf, record.apexes);
+        recorder.Begin(record.segments, record.fanOf, record.apexes, nullptr, 0);
         const Vec3 d = Normalised(look + Vec3{spread * u(rng), spread * u(rng), 0});
         const bool hits = u(rng) > -0.7;
         const double t = hits ? len(rng) : 2e10;
         const double o[3] = {eye.x, eye.y, eye.z}, dd[3] = {d.x, d.y, d.z};
-        RecordRaySegment(o, dd, t);
+        RecordRaySegment(o, dd, t, kUnitNothing);
         if (!hits) continue;
         const Vec3 p = eye + t * d;
         const Vec3 toLight = light - p;
@@ -44,12 +44,12 @@ BlockRecord RecordedBlock(std::mt19937_64 &rng, double spread) {
         {
             const double po[3] = {p.x, p.y, p.z}, ld[3] = {l.x, l.y, l.z};
             ShadowSegmentRecord shadow(po, ld, dist);
-            if (i % 5 == 0) shadow.BlockedAt(dist * (0.3 + 0.6 * (u(rng) + 1) / 2));
+            if (i % 5 == 0) shadow.BlockedAt(dist * (0.3 + 0.6 * (u(rng) + 1) / 2), kUnitNothing, true);
         }
         if (i % 6 == 0) {
             const Vec3 r = Normalised(Vec3{u(rng), u(rng), u(rng)});
             const double po[3] = {p.x, p.y, p.z}, rd[3] = {r.x, r.y, r.z};
-            RecordRaySegment(po, rd, len(rng) / 4);
+            RecordRaySegment(po, rd, len(rng) / 4, kUnitNothing);
         }
     }
     StopRecordingRays();

@@ -1,5 +1,8 @@
-// Tests for change detection between two frames' signatures, including CSG children.
+// Tests for change detection between two frames' signatures: units matched by hash, new
+// shapes as hulls, ties' order, full frames.
 #include <gtest/gtest.h>
+
+#include <algorithm>
 
 #include "povrayfc/change_detection.h"
 
@@ -13,31 +16,26 @@ FrameSetup Frame() {
     return s;
 }
 
-ChildSignature Child(std::uint64_t hash, double x, bool light = false) {
-    ChildSignature c;
-    c.hash = hash;
-    c.bounds = Box{Vec3{x, 0, 0}, Vec3{x + 1, 1, 1}};
-    c.isLight = light;
-    if (light) {
-        c.infinite = true;
-        c.bounds = Box();
-    }
-    return c;
+// A unit: `hash` is everything about it, `geometry` its shape alone; a unit box at x.
+UnitSignature Unit(std::uint64_t hash, std::uint64_t geometry, double x) {
+    UnitSignature u;
+    u.hash = hash;
+    u.geometry = geometry;
+    u.bounds = Box{Vec3{x, 0, 0}, Vec3{x + 1, 1, 1}};
+    return u;
 }
 
-ObjectSignature Csg(std::uint64_t hash, std::uint64_t shell, std::vector<ChildSignature> children) {
+ObjectSignature Item(std::uint64_t hash) {
     ObjectSignature o;
     o.hash = hash;
-    o.shell = shell;
-    o.children = std::move(children);
-    for (const ChildSignature &c : o.children)
-        if (!c.isLight) o.bounds.Grow(c.bounds);
     return o;
 }
 
-SceneSignature Scene(std::vector<ObjectSignature> objects) {
+// One item per unit, the item's hash that of its unit (enough for the order).
+SceneSignature Scene(std::vector<UnitSignature> units) {
     SceneSignature s;
-    s.objects = std::move(objects);
+    for (const UnitSignature &u : units) s.objects.push_back(Item(u.hash));
+    s.units = std::move(units);
     s.complete = true;
     return s;
 }
@@ -48,64 +46,130 @@ bool Covers(const std::vector<Hull> &hulls, double x) {
     return false;
 }
 
-TEST(ChangeDetection, MovedChildOfAUnionDirtiesOnlyThatChild) {
-    const SceneSignature a = Scene({Csg(1, 77, {Child(10, 0), Child(11, 5)})});
-    const SceneSignature b = Scene({Csg(2, 77, {Child(10, 0), Child(12, 6)})});
+bool Has(const std::vector<std::uint32_t> &v, std::uint32_t x) { return std::find(v.begin(), v.end(), x) != v.end(); }
+
+TEST(ChangeDetection, AMovedUnitIsTestedAtItsNewPlaceAndDirtiesWhatEndedOnIt) {
+    const SceneSignature a = Scene({Unit(10, 100, 0), Unit(11, 110, 5)});
+    const SceneSignature b = Scene({Unit(10, 100, 0), Unit(12, 120, 6)});
     const FrameChange c = CompareFrames(Frame(), a, Frame(), b, false);
     ASSERT_EQ(c.fullReason, "");
-    // Invariant: the unchanged child's place is not dirty; the moved one's old and new are.
-    EXPECT_EQ(c.hulls.size(), 2u);
-    EXPECT_FALSE(Covers(c.hulls, 0));
-    EXPECT_TRUE(Covers(c.hulls, 5));
+    // Invariant: the unchanged unit continues; the moved one's old self vanished (what ended
+    // on it is dirty) and only its new place is a hull (what did not end on the old shape
+    // never met it).
+    EXPECT_EQ(c.continues[0], 0u);
+    EXPECT_EQ(c.continues[1], FrameChange::kNew);
+    EXPECT_EQ(c.vanished, std::vector<std::uint32_t>{1});
+    EXPECT_EQ(c.hulls.size(), 1u);
     EXPECT_TRUE(Covers(c.hulls, 6));
+    EXPECT_FALSE(Covers(c.hulls, 5));
+    EXPECT_FALSE(Covers(c.hulls, 0));
 }
 
-TEST(ChangeDetection, ChangedShellDirtiesTheWholeObject) {
-    // Same children, another texture or transform on the union: everything it covers.
-    const SceneSignature a = Scene({Csg(1, 77, {Child(10, 0), Child(11, 5)})});
-    const SceneSignature b = Scene({Csg(2, 78, {Child(10, 0), Child(11, 5)})});
+TEST(ChangeDetection, AChangeOfAppearanceAloneHasNoHull) {
+    // Same geometry, another colour: the rays that ended on it are dirty, no other ray can
+    // meet it anew.
+    const SceneSignature a = Scene({Unit(10, 100, 0), Unit(11, 110, 5)});
+    const SceneSignature b = Scene({Unit(10, 100, 0), Unit(13, 110, 5)});
     const FrameChange c = CompareFrames(Frame(), a, Frame(), b, false);
     ASSERT_EQ(c.fullReason, "");
-    EXPECT_TRUE(Covers(c.hulls, 0));
-    EXPECT_TRUE(Covers(c.hulls, 5));
+    EXPECT_EQ(c.vanished, std::vector<std::uint32_t>{1});
+    EXPECT_TRUE(c.hulls.empty());
+    EXPECT_FALSE(c.NothingChanged());
 }
 
-TEST(ChangeDetection, LightOfALightGroupDirtiesWhatItLights) {
-    const SceneSignature a = Scene({Csg(1, 77, {Child(10, 0), Child(11, 5), Child(20, 0, true)}),
-                                    Csg(3, 99, {Child(30, 20), Child(31, 21)})});
-    const SceneSignature b = Scene({Csg(2, 77, {Child(10, 0), Child(11, 5), Child(21, 0, true)}),
-                                    Csg(3, 99, {Child(30, 20), Child(31, 21)})});
+TEST(ChangeDetection, AnAppearingUnitIsAHullAndAVanishingOneIsNot) {
+    const SceneSignature a = Scene({Unit(10, 100, 0), Unit(11, 110, 5)});
+    SceneSignature c1 = a;
+    c1.units.push_back(Unit(15, 150, 12));
+    c1.objects.push_back(Item(15));
+    const FrameChange appeared = CompareFrames(Frame(), a, Frame(), c1, false);
+    EXPECT_TRUE(appeared.vanished.empty());
+    EXPECT_TRUE(Covers(appeared.hulls, 12));
+    const FrameChange gone = CompareFrames(Frame(), c1, Frame(), a, false);
+    EXPECT_EQ(gone.vanished, std::vector<std::uint32_t>{2});
+    EXPECT_TRUE(gone.hulls.empty());
+}
+
+TEST(ChangeDetection, IdenticalUnitsAreMatchedAsAMultiset) {
+    // Two identical units and one of them moves: one continues, one vanishes.
+    const SceneSignature a = Scene({Unit(10, 100, 0), Unit(10, 100, 0)});
+    const SceneSignature b = Scene({Unit(10, 100, 0), Unit(16, 160, 3)});
     const FrameChange c = CompareFrames(Frame(), a, Frame(), b, false);
-    // Invariant: not a full frame; the group's objects are dirty, the other object is not.
-    ASSERT_EQ(c.fullReason, "");
-    EXPECT_TRUE(Covers(c.hulls, 0));
-    EXPECT_TRUE(Covers(c.hulls, 5));
-    EXPECT_FALSE(Covers(c.hulls, 20));
+    EXPECT_NE(c.continues[0], FrameChange::kNew);
+    EXPECT_EQ(c.continues[1], FrameChange::kNew);
+    EXPECT_EQ(c.vanished.size(), 1u);
+    EXPECT_TRUE(Has({0, 1}, c.vanished[0]));
+    EXPECT_NE(c.vanished[0], c.continues[0]);
 }
 
-TEST(ChangeDetection, UnboundedChildOrObjectMakesAFullFrame) {
-    ChildSignature plane = Child(40, 0);
+TEST(ChangeDetection, AnUnboundedUnitThatChangesShapeIsAFullFrameAndOneThatChangesColourIsNot) {
+    UnitSignature plane = Unit(40, 400, 0);
     plane.infinite = true;
     plane.bounds = Box();
-    ObjectSignature before = Csg(1, 77, {Child(10, 0), plane});
-    before.infinite = true;
-    ChildSignature plane2 = plane;
-    plane2.hash = 41;
-    ObjectSignature after = Csg(2, 77, {Child(10, 0), plane2});
-    after.infinite = true;
-    const FrameChange c = CompareFrames(Frame(), Scene({before}), Frame(), Scene({after}), false);
-    EXPECT_EQ(c.fullReason, "an unbounded object changed");
+    UnitSignature moved = plane, recoloured = plane;
+    moved.hash = 41;
+    moved.geometry = 410;
+    recoloured.hash = 42;
+    const SceneSignature a = Scene({Unit(10, 100, 0), plane});
+    EXPECT_EQ(CompareFrames(Frame(), a, Frame(), Scene({Unit(10, 100, 0), moved}), false).fullReason,
+              "an unbounded object changed shape");
+    const FrameChange c = CompareFrames(Frame(), a, Frame(), Scene({Unit(10, 100, 0), recoloured}), false);
+    EXPECT_EQ(c.fullReason, "");
+    EXPECT_EQ(c.vanished, std::vector<std::uint32_t>{1});
+}
+
+TEST(ChangeDetection, AChangeOfAUnitAroundTheCameraIsAFullFrame) {
+    // Camera rays start in its medium: all of them depend on it, whatever they end on.
+    UnitSignature room = Unit(50, 500, 0);
+    room.containsCamera = true;
+    UnitSignature recoloured = room;
+    recoloured.hash = 51;
+    const SceneSignature a = Scene({room, Unit(10, 100, 3)});
+    EXPECT_EQ(CompareFrames(Frame(), a, Frame(), Scene({recoloured, Unit(10, 100, 3)}), false).fullReason,
+              "an object around the camera changed");
+    // ... also when it appears around the camera, or leaves it.
+    const SceneSignature without = Scene({Unit(10, 100, 3)});
+    EXPECT_EQ(CompareFrames(Frame(), without, Frame(), a, false).fullReason, "an object around the camera changed");
+    EXPECT_EQ(CompareFrames(Frame(), a, Frame(), without, false).fullReason, "an object around the camera changed");
 }
 
 TEST(ChangeDetection, NothingAndGlobalChanges) {
-    const SceneSignature a = Scene({Csg(1, 77, {Child(10, 0)})});
+    const SceneSignature a = Scene({Unit(10, 100, 0)});
     EXPECT_TRUE(CompareFrames(Frame(), a, Frame(), a, false).NothingChanged());
     SceneSignature b = a;
     b.global = 5;
     EXPECT_EQ(CompareFrames(Frame(), a, Frame(), b, false).fullReason, "global settings or atmosphere changed");
     b = a;
+    b.lights = 5;
+    EXPECT_EQ(CompareFrames(Frame(), a, Frame(), b, false).fullReason, "light sources changed");
+    b = a;
     b.camera = 5;
     EXPECT_TRUE(CompareFrames(Frame(), a, Frame(), b, false).newSequence);
+    // Photons: the map depends on every object.
+    EXPECT_NE(CompareFrames(Frame(), a, Frame(), Scene({Unit(11, 110, 0)}), true).fullReason, "");
+}
+
+TEST(ChangeDetection, TheSameObjectsInAnotherOrderChangeTheOrderOnly) {
+    // Invariant: a permutation is no object change, but POV-Ray may meet tied surfaces in
+    // another order.
+    const SceneSignature a = Scene({Unit(1, 1, 0), Unit(2, 2, 0), Unit(3, 3, 5)});
+    const SceneSignature b = Scene({Unit(2, 2, 0), Unit(1, 1, 0), Unit(3, 3, 5)});
+    const FrameChange c = CompareFrames(Frame(), a, Frame(), b, false);
+    EXPECT_EQ(c.fullReason, "");
+    EXPECT_TRUE(c.hulls.empty());
+    EXPECT_TRUE(c.vanished.empty());
+    EXPECT_TRUE(c.orderChanged);
+    EXPECT_FALSE(c.NothingChanged());
+}
+
+TEST(ChangeDetection, AnyObjectChangeChangesTheOrderAndNoChangeDoesNot) {
+    // Invariant: a change anywhere may reshape the bounding tree; an identical list cannot.
+    const SceneSignature a = Scene({Unit(1, 1, 0), Unit(2, 2, 0), Unit(3, 3, 5)});
+    const SceneSignature moved = Scene({Unit(1, 1, 0), Unit(2, 2, 0), Unit(4, 4, 9)});
+    EXPECT_TRUE(CompareFrames(Frame(), a, Frame(), moved, false).orderChanged);
+    const FrameChange same = CompareFrames(Frame(), a, Frame(), a, false);
+    EXPECT_FALSE(same.orderChanged);
+    EXPECT_TRUE(same.NothingChanged());
 }
 
 }  // namespace
@@ -114,33 +178,17 @@ TEST(ChangeDetection, NothingAndGlobalChanges) {
 namespace povrayfc {
 namespace {
 
-ObjectSignature Plain(std::uint64_t hash, double x) {
-    ObjectSignature o;
-    o.hash = hash;
-    o.bounds = Box{Vec3{x, 0, 0}, Vec3{x + 1, 1, 1}};
-    return o;
-}
-
-TEST(ChangeDetection, TheSameObjectsInAnotherOrderChangeTheOrderOnly) {
-    // Invariant: a permutation is no object change, but POV-Ray may meet tied surfaces in
-    // another order.
-    const SceneSignature a = Scene({Plain(1, 0), Plain(2, 0), Plain(3, 5)});
-    const SceneSignature b = Scene({Plain(2, 0), Plain(1, 0), Plain(3, 5)});
-    const FrameChange c = CompareFrames(Frame(), a, Frame(), b, false);
-    EXPECT_EQ(c.fullReason, "");
-    EXPECT_TRUE(c.hulls.empty());
-    EXPECT_TRUE(c.orderChanged);
-    EXPECT_FALSE(c.NothingChanged());
-}
-
-TEST(ChangeDetection, AnyObjectChangeChangesTheOrderAndNoChangeDoesNot) {
-    // Invariant: a change anywhere may reshape the bounding tree; an identical list cannot.
-    const SceneSignature a = Scene({Plain(1, 0), Plain(2, 0), Plain(3, 5)});
-    const SceneSignature moved = Scene({Plain(1, 0), Plain(2, 0), Plain(4, 9)});
-    EXPECT_TRUE(CompareFrames(Frame(), a, Frame(), moved, false).orderChanged);
-    const FrameChange same = CompareFrames(Frame(), a, Frame(), a, false);
-    EXPECT_FALSE(same.orderChanged);
-    EXPECT_TRUE(same.NothingChanged());
+TEST(ChangeDetection, ARecolouredUnitKeepsItsShadowsOnlyWhileItStaysOpaque) {
+    UnitSignature opaque = Unit(10, 100, 0), recoloured = Unit(11, 100, 0), glassy = Unit(12, 100, 0);
+    opaque.opaque = recoloured.opaque = true;
+    const SceneSignature a = Scene({opaque});
+    const FrameChange kept = CompareFrames(Frame(), a, Frame(), Scene({recoloured}), false);
+    ASSERT_EQ(kept.vanished, std::vector<std::uint32_t>{0});
+    EXPECT_EQ(kept.shadowsKept, std::vector<std::uint8_t>{1});
+    const FrameChange lost = CompareFrames(Frame(), a, Frame(), Scene({glassy}), false);
+    EXPECT_EQ(lost.shadowsKept, std::vector<std::uint8_t>{0});
+    const FrameChange moved = CompareFrames(Frame(), a, Frame(), Scene({Unit(13, 130, 4)}), false);
+    EXPECT_EQ(moved.shadowsKept, std::vector<std::uint8_t>{0});
 }
 
 }  // namespace

@@ -45,8 +45,14 @@ double Hit(const ToyBox &b, const double o[3], const double d[3]) {
     return t0 <= t1 ? t0 : -1;
 }
 
+// The unit a box is, as the parser numbers them: its place in the scene.
+std::uint32_t UnitOf(const ToyScene &scene, const ToyBox *box) {
+    return box ? std::uint32_t(box - scene.boxes.data()) : kUnitNothing;
+}
+
 // One camera sample at image position (x, y): a ray along +z, the box it hits, and a
-// shadow ray from there straight up to the light. Records both rays like POV-Ray's hooks.
+// shadow ray from there straight up to the light (to the nearest box in its way). Records
+// the rays like POV-Ray's hooks, each with the unit it ended on.
 void TraceToy(const ToyScene &scene, double x, double y, float rgbft[5]) {
     const double o[3] = {x, y, -10}, d[3] = {0, 0, 1};
     double best = 1e30;
@@ -61,17 +67,19 @@ void TraceToy(const ToyScene &scene, double x, double y, float rgbft[5]) {
             if (t < best) best = t, hit = &b;
         }
     }
-    RecordRaySegment(o, d, hit ? best : 2e10);
+    RecordRaySegment(o, d, hit ? best : 2e10, UnitOf(scene, hit));
     std::memset(rgbft, 0, 5 * sizeof(float));
     if (!hit) return;
     const double p[3] = {x, y, -10 + best}, up[3] = {0, 1, 0};
     const double toLight = scene.lightY - p[1];
-    bool shadow = false;
+    const ToyBox *blocker = nullptr;
+    double blockedAt = toLight;
     for (const ToyBox &b : scene.boxes) {
         const double t = (&b == hit) ? -1 : Hit(b, p, up);
-        if (t >= 0 && t < toLight) shadow = true;
+        if (t >= 0 && t < blockedAt) blocker = &b, blockedAt = t;
     }
-    RecordRaySegment(p, up, toLight);
+    const bool shadow = blocker != nullptr;
+    RecordRaySegment(p, up, blockedAt, UnitOf(scene, blocker));
     rgbft[0] = float(hit->id);
     rgbft[1] = shadow ? 0.25f : 1.0f;
     if (hit->id == 1) {
@@ -88,7 +96,7 @@ void TraceToy(const ToyScene &scene, double x, double y, float rgbft[5]) {
                 if (t < rbest) rbest = t, rhit = &b;
             }
         }
-        RecordRaySegment(p, r, rhit ? rbest : 2e10);
+        RecordRaySegment(p, r, rhit ? rbest : 2e10, UnitOf(scene, rhit));
         rgbft[2] = rhit ? float(rhit->id) : 0.5f;
     }
 }
@@ -120,14 +128,21 @@ void RenderBlock(int left, int top, int right, int bottom, Sample sample, Image 
     }
 }
 
+// Each box is an item and a unit: its id is its appearance, its box its geometry.
 SceneSignature Signature(const ToyScene &scene) {
     SceneSignature s;
     s.camera = scene.camera;
     s.lights = std::uint64_t(scene.lightY * 1000);
     for (const ToyBox &b : scene.boxes) {
+        UnitSignature u;
+        u.geometry = std::uint64_t(std::llround(b.box.lo.x * 1024)) * 31 ^ std::uint64_t(std::llround(b.box.lo.y * 1024)) * 17 ^
+                     std::uint64_t(std::llround(b.box.lo.z * 1024)) ^ std::uint64_t(std::llround(b.box.hi.x * 1024)) * 7 ^
+                     std::uint64_t(std::llround(b.box.hi.y * 1024)) * 13 ^ std::uint64_t(std::llround(b.box.hi.z * 1024)) * 3;
+        u.hash = b.id * 1000003u ^ u.geometry;
+        u.bounds = b.box;
+        s.units.push_back(u);
         ObjectSignature o;
-        o.hash = b.id * 1000003u ^ std::uint64_t(std::llround(b.box.lo.x * 1024)) * 31 ^
-                 std::uint64_t(std::llround(b.box.lo.y * 1024)) * 17 ^ std::uint64_t(std::llround(b.box.lo.z * 1024));
+        o.hash = u.hash;
         o.bounds = b.box;
         s.objects.push_back(o);
     }
@@ -403,10 +418,10 @@ TEST_F(FrameCoherenceRun, UnboundedLooseRayNotHeldByTheLooseBoxStillSeesAChange)
                     // Short loose segments far from the box, and from pixel (1, 1) a
                     // reflection-like ray towards (50.5, 50.5, 50.5) that hit nothing.
                     const double o[3] = {double(x), double(y), -3}, d[3] = {0.1, 0.2, 1};
-                    RecordRaySegment(o, d, 0.5);
+                    RecordRaySegment(o, d, 0.5, kUnitNothing);
                     const double p[3] = {double(x), double(y), 0};
                     const double r[3] = {50.5 - x, 50.5 - y, 50.5};
-                    if (x == 1 && y == 1) RecordRaySegment(p, r, 2e10);
+                    if (x == 1 && y == 1) RecordRaySegment(p, r, 2e10, kUnitNothing);
                     tracer.EndSample(x, y, c);
                     ++traced;
                 }
@@ -522,7 +537,11 @@ TEST_F(FrameCoherenceRun, ReplayReusesCleanSamplesAskedInAnyOrder) {
                 }
                 tracer.BeginSample();
                 const double o[3] = {x, y, -3}, d[3] = {0, 0, 1};
-                RecordRaySegment(o, d, i == 0 ? 20.0 : 1.0);  // only (0, 0) reaches the box
+                // Only (0, 0) reaches the box's places: it ends on the box when it is there.
+                if (i == 0 && boxX == 0.0)
+                    RecordRaySegment(o, d, 13.0, 0);
+                else
+                    RecordRaySegment(o, d, i == 0 ? 20.0 : 1.0, kUnitNothing);
                 tracer.EndSample(x, y, c);
                 ++traced;
             }
@@ -554,7 +573,7 @@ TEST_F(FrameCoherenceRun, ReplayedBlockInTheSameOrderIsUpdatedInPlace) {
     FrameCoherence &fc = FrameCoherence::Get();
     const int n = kBlock * kBlock;
     // Sample 0's ray reaches x = 0 at z = 10..11 and is recorded as `pieces` segments; the
-    // others end before z = 10. The box sits on that ray at x = 0, or off it.
+    // others end before z = 10. The box sits on that ray at x = 0 (where it ends), or off it.
     auto frame = [&](int number, bool boxOnRay, bool reversed, int pieces) {
         ToyScene s;
         const double boxX = boxOnRay ? 0.0 : 5.0;
@@ -571,13 +590,16 @@ TEST_F(FrameCoherenceRun, ReplayedBlockInTheSameOrderIsUpdatedInPlace) {
                 if (tracer.Reuse(x, y, c)) continue;
                 tracer.BeginSample();
                 if (i == 0) {
+                    // In pieces (like a ray through transparent objects), the last ending on
+                    // the box when it is on the ray.
+                    const double reach = boxOnRay ? 13.0 : 20.0;
                     for (int p = 0; p < pieces; ++p) {
-                        const double o[3] = {x, y, -3.0 + 20.0 * p / pieces}, d[3] = {0, 0, 1};
-                        RecordRaySegment(o, d, 20.0 / pieces);
+                        const double o[3] = {x, y, -3.0 + reach * p / pieces}, d[3] = {0, 0, 1};
+                        RecordRaySegment(o, d, reach / pieces, (boxOnRay && p == pieces - 1) ? 0 : kUnitNothing);
                     }
                 } else {
                     const double o[3] = {x, y, -3}, d[3] = {0, 0, 1};
-                    RecordRaySegment(o, d, 1.0);
+                    RecordRaySegment(o, d, 1.0, kUnitNothing);
                 }
                 tracer.EndSample(x, y, c);
                 ++traced;
@@ -674,6 +696,197 @@ TEST_F(FrameCoherenceRun, TiedSamplesAreTracedAgainWhenAnythingMovesAndNotOtherw
         return RenderFc(Frame(0.5), 2);
     }();
     EXPECT_GT(r.tracedSamples, withoutTies.tracedSamples);
+}
+
+}  // namespace
+}  // namespace povrayfc
+
+namespace povrayfc {
+namespace {
+
+// Units by hand: `hashes` and `geometries` per unit, each a unit box at x = 10 * i.
+SceneSignature UnitsScene(const std::vector<std::uint64_t> &hashes, const std::vector<std::uint64_t> &geometries,
+                          const std::vector<double> &xs) {
+    SceneSignature s;
+    for (std::size_t i = 0; i < hashes.size(); ++i) {
+        UnitSignature u;
+        u.hash = hashes[i];
+        u.geometry = geometries[i];
+        u.bounds = Box{Vec3{xs[i], 0, 5}, Vec3{xs[i] + 1, 4, 6}};
+        s.units.push_back(u);
+        ObjectSignature o;
+        o.hash = hashes[i];
+        s.objects.push_back(o);
+    }
+    s.complete = true;
+    return s;
+}
+
+// One 4x4 block, one sample per pixel, each a ray along +z from (x, y, 0) that ends on
+// unit `endsOn(x, y)` at z = 5 (or goes on to z = 20 with kUnitNothing). Returns how many
+// samples were traced.
+template <class EndsOn>
+int RenderUnitsBlock(int frame, const SceneSignature &sig, EndsOn endsOn) {
+    FrameCoherence &fc = FrameCoherence::Get();
+    PublishSceneSignature(kScene, sig);
+    fc.BeginFrame(true, ToySetup(frame), kScene, {});
+    BlockTracer tracer(fc.Plan());
+    int traced = 0;
+    if (!tracer.Begin(0, 0, 0, kBlock - 1, kBlock - 1)) {
+        for (int y = 0; y < kBlock; ++y)
+            for (int x = 0; x < kBlock; ++x) {
+                float c[5] = {0, 0, 0, 0, 0};
+                if (tracer.Reuse(x, y, c)) continue;
+                tracer.BeginSample();
+                const double o[3] = {double(x), double(y), 0}, d[3] = {0, 0, 1};
+                const std::uint32_t unit = endsOn(x, y);
+                RecordRaySegment(o, d, unit == kUnitNothing ? 20.0 : 5.0, unit);
+                tracer.EndSample(x, y, c);
+                ++traced;
+            }
+        EndBlockInBlack(tracer);
+    }
+    fc.EndFrame(0);
+    return traced;
+}
+
+TEST_F(FrameCoherenceRun, AChangedUnitDirtiesExactlyTheSamplesThatEndedOnIt) {
+    // Columns 0-1 end on unit 0, 2-3 on unit 1 (both far from every ray's path otherwise).
+    auto endsOn = [](int x, int) { return std::uint32_t(x < 2 ? 0 : 1); };
+    const std::vector<double> xs = {100, 200};
+    EXPECT_EQ(RenderUnitsBlock(1, UnitsScene({1, 2}, {11, 12}, xs), endsOn), 16);
+    EXPECT_EQ(RenderUnitsBlock(2, UnitsScene({1, 2}, {11, 12}, xs), endsOn), 0);
+    // Invariant: unit 0 changes colour (same geometry): its 8 samples, no other.
+    EXPECT_EQ(RenderUnitsBlock(3, UnitsScene({3, 2}, {11, 12}, xs), endsOn), 8);
+    // ... and again (its id is kept across frames only while it is unchanged).
+    EXPECT_EQ(RenderUnitsBlock(4, UnitsScene({4, 2}, {11, 12}, xs), endsOn), 8);
+    // Unit 1 changes shape far from every ray: what ended on it, no other.
+    EXPECT_EQ(RenderUnitsBlock(5, UnitsScene({4, 5}, {11, 15}, {100, 300}), endsOn), 8);
+    EXPECT_EQ(RenderUnitsBlock(6, UnitsScene({4, 5}, {11, 15}, {100, 300}), endsOn), 0);
+}
+
+TEST_F(FrameCoherenceRun, AMovedUnitIsMetAtItsNewPlaceNotAtItsOld) {
+    // Row 0 ends on unit 0 (at x = 0..1 on the rays' way); the rest go on to z = 20.
+    auto endsOn = [](int, int y) { return y == 0 ? 0u : kUnitNothing; };
+    const std::vector<std::uint64_t> geometry = {11, 12};
+    EXPECT_EQ(RenderUnitsBlock(1, UnitsScene({1, 2}, geometry, {0, 100}), endsOn), 16);
+    // Unit 1 moves from far away into the rays of columns 2 and 3 (x = 2..3): the rows that
+    // did not end on anything meet its new place (3 rows x 2 columns); row 0 stops before.
+    auto endsOnAfter = [](int x, int y) { return y == 0 ? 0u : (x >= 2 ? 1u : kUnitNothing); };
+    EXPECT_EQ(RenderUnitsBlock(2, UnitsScene({1, 3}, {11, 13}, {0, 2}), endsOnAfter), 6 + 2);
+    // It moves away again: only the samples that ended on it are traced.
+    EXPECT_EQ(RenderUnitsBlock(3, UnitsScene({1, 4}, {11, 14}, {0, 300}), endsOn), 6);
+}
+
+}  // namespace
+}  // namespace povrayfc
+
+namespace povrayfc {
+namespace {
+
+// One 4x4 block: each sample a camera ray ending on unit 1 and, from there, a shadow test
+// that unit 0 (an opaque blocker, or a glass pane passed) answered.
+int RenderShadowedBlock(int frame, const SceneSignature &sig, bool opaqueBlocker) {
+    FrameCoherence &fc = FrameCoherence::Get();
+    PublishSceneSignature(kScene, sig);
+    fc.BeginFrame(true, ToySetup(frame), kScene, {});
+    BlockTracer tracer(fc.Plan());
+    int traced = 0;
+    if (!tracer.Begin(0, 0, 0, kBlock - 1, kBlock - 1)) {
+        for (int y = 0; y < kBlock; ++y)
+            for (int x = 0; x < kBlock; ++x) {
+                float c[5] = {0, 0, 0, 0, 0};
+                if (tracer.Reuse(x, y, c)) continue;
+                tracer.BeginSample();
+                const double o[3] = {double(x), double(y), 0}, d[3] = {0, 0, 1};
+                RecordRaySegment(o, d, 5.0, 1);
+                {
+                    const double p[3] = {double(x), double(y), 5}, up[3] = {0, 1, 0};
+                    const double depth = 50.0;
+                    ShadowSegmentRecord shadow(p, up, depth);  // recorded when it goes
+                    if (opaqueBlocker)
+                        shadow.BlockedAt(10.0, 0, true);
+                    else
+                        shadow.PassedAt(10.0, 0);
+                }
+                tracer.EndSample(x, y, c);
+                ++traced;
+            }
+        EndBlockInBlack(tracer);
+    }
+    fc.EndFrame(0);
+    return traced;
+}
+
+SceneSignature BlockerScene(std::uint64_t blockerHash, bool blockerOpaque) {
+    SceneSignature s = UnitsScene({blockerHash, 2}, {11, 12}, {0, 100});
+    s.units[0].opaque = blockerOpaque;
+    return s;
+}
+
+TEST_F(FrameCoherenceRun, ARecolouredOpaqueBlockerKeepsItsShadowsAndAGlassPaneDoesNot) {
+    // Invariant: a shadow test an opaque surface answered is dark whatever its colour; one
+    // that passed a transparent surface carries its colour.
+    EXPECT_EQ(RenderShadowedBlock(1, BlockerScene(1, true), true), 16);
+    EXPECT_EQ(RenderShadowedBlock(2, BlockerScene(3, true), true), 0);   // recoloured, still opaque
+    EXPECT_EQ(RenderShadowedBlock(3, BlockerScene(4, false), true), 16); // now it lets light through
+    SetUp();
+    EXPECT_EQ(RenderShadowedBlock(1, BlockerScene(1, true), false), 16);
+    EXPECT_EQ(RenderShadowedBlock(2, BlockerScene(3, true), false), 16);  // the light passed it
+}
+
+}  // namespace
+}  // namespace povrayfc
+
+namespace povrayfc {
+namespace {
+
+TEST_F(FrameCoherenceRun, AStoreOverItsBudgetTracesTheBlocksLeftOutAndStaysExact) {
+    // Invariant: the store never holds more than its budget; the blocks it leaves out are
+    // traced in full, and every frame still equals its full render.
+    FrameCoherence &fc = FrameCoherence::Get();
+    std::size_t budget = 0;
+    for (int frame = 1; frame <= 6; ++frame) {
+        const ToyScene scene = Frame(0.4 * frame);
+        PublishSceneSignature(kScene, Signature(scene));
+        FrameSetup setup = ToySetup(frame);
+        setup.memoryBudgetBytes = 20000;  // most of the eight blocks' records, not all
+        fc.BeginFrame(true, setup, kScene, {});
+        FcResult r;
+        r.image.assign(std::size_t(kW) * kH * 5, 0.0f);
+        BlockTracer tracer(fc.Plan());
+        std::uint32_t serial = 0;
+        for (int by = 0; by < kH; by += kBlock)
+            for (int bx = 0; bx < kW; bx += kBlock, ++serial) {
+                const int right = bx + kBlock - 1, bottom = by + kBlock - 1;
+                if (tracer.Begin(serial, bx, by, right, bottom)) {
+                    for (int y = by; y <= bottom; ++y)
+                        for (int x = bx; x <= right; ++x) tracer.StoredPixel(x, y, &r.image[(std::size_t(y) * kW + x) * 5]);
+                    continue;
+                }
+                RenderBlock(bx, by, right, bottom,
+                            [&](double x, double y, float c[5]) {
+                                if (tracer.Reuse(x, y, c)) return;
+                                tracer.BeginSample();
+                                TraceToy(scene, x, y, c);
+                                tracer.EndSample(x, y, c);
+                            },
+                            r.image);
+                for (int y = by; y <= bottom; ++y)
+                    for (int x = bx; x <= right; ++x) tracer.SetPixel(x, y, &r.image[(std::size_t(y) * kW + x) * 5]);
+                tracer.End();
+            }
+        ASSERT_NE(fc.Plan().store, nullptr) << "frame " << frame;  // recording pays: never paused
+        budget = fc.Plan().store->BudgetBytes();
+        EXPECT_LE(fc.Plan().store->RecordBytes(), budget) << "frame " << frame;
+        fc.EndFrame(0);
+        EXPECT_EQ(r.image, RenderFull(scene)) << "frame " << frame;
+        EXPECT_GT(fc.LastStats().overBudgetBlocks, 0u) << "frame " << frame;
+        if (frame > 1) {
+            EXPECT_LT(fc.LastStats().traced, fc.LastStats().pixels) << "frame " << frame;
+        }
+    }
+    EXPECT_EQ(budget, 20000u);
 }
 
 }  // namespace

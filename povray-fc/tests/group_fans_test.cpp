@@ -59,7 +59,7 @@ void TraceSample(const Scene &scene, double x, double y, std::mt19937_64 &rng) {
     const double tBall = scene.HitBall(scene.eye, d);
     const double tFloor = d.y < 0 ? -scene.eye.y / d.y : -1;
     if (tBall > 0 && (tFloor < 0 || tBall < tFloor)) {
-        RecordRaySegment(o, dd, tBall);
+        RecordRaySegment(o, dd, tBall, kUnitNothing);
         const Vec3 p = scene.eye + tBall * d;
         Shadow(scene, p);
         // A curved mirror: its reflections go anywhere, some to the floor.
@@ -67,21 +67,21 @@ void TraceSample(const Scene &scene, double x, double y, std::mt19937_64 &rng) {
         const double po[3] = {p.x, p.y, p.z}, rd[3] = {r.x, r.y, r.z};
         if (r.y < 0) {
             const double t = -p.y / r.y;
-            RecordRaySegment(po, rd, t);
+            RecordRaySegment(po, rd, t, kUnitNothing);
             Shadow(scene, p + t * r);
         } else {
-            RecordRaySegment(po, rd, 2e10);
+            RecordRaySegment(po, rd, 2e10, kUnitNothing);
         }
     } else if (tFloor > 0) {
-        RecordRaySegment(o, dd, tFloor);
+        RecordRaySegment(o, dd, tFloor, kUnitNothing);
         const Vec3 p = scene.eye + tFloor * d;
         Shadow(scene, p);
         const Vec3 r{d.x, -d.y, d.z};  // a flat mirror: reflections of the sky or the ball
         const double po[3] = {p.x, p.y, p.z}, rd[3] = {r.x, r.y, r.z};
         const double t = scene.HitBall(p, r);
-        RecordRaySegment(po, rd, t > 0 ? t : 2e10);
+        RecordRaySegment(po, rd, t > 0 ? t : 2e10, kUnitNothing);
     } else {
-        RecordRaySegment(o, dd, 2e10);
+        RecordRaySegment(o, dd, 2e10, kUnitNothing);
     }
 }
 
@@ -95,7 +95,7 @@ BlockRecord RecordBlock(const Scene &scene, int left, int top, std::mt19937_64 &
     SampleRecorder recorder;
     for (int y = top; y <= record.bottom; ++y)
         for (int x = left; x <= record.right; ++x) {
-            recorder.Begin(record.segments, record.fanOf, record.apexes);
+            recorder.Begin(record.segments, record.fanOf, record.apexes, nullptr, 0);
             StartRecordingRays(recorder);
             TraceSample(scene, x, y, rng);
             StopRecordingRays();
@@ -184,7 +184,7 @@ TEST(GroupFans, GrownGroupsHoldTheSamplesTracedAnew) {
         SampleRecorder recorder;
         for (StoredSample &s : record.samples) {
             if (rng() % 4) continue;
-            recorder.Begin(record.segments, record.fanOf, record.apexes);
+            recorder.Begin(record.segments, record.fanOf, record.apexes, nullptr, 0);
             StartRecordingRays(recorder);
             TraceSample(moved, s.x, s.y, rng);
             StopRecordingRays();

@@ -48,15 +48,15 @@ TEST(RecordingPolicy, BusyFramesBackOffLongerEachTime) {
     EXPECT_EQ(wait, 2);
 }
 
-TEST(RecordingPolicy, WorkShareWeighsTimeOnlyWhenManySamplesAreTraced) {
-    // Few samples traced: the time is not looked at (a slow moment cannot pause fc).
-    EXPECT_EQ(RecordingPolicy::WorkShare(0.2, 5.0, 1.0), 0.2);
-    // Many traced, and they were the expensive ones: the time says busy.
-    EXPECT_EQ(RecordingPolicy::WorkShare(0.63, 0.95, 1.0), 0.95);
-    EXPECT_GT(RecordingPolicy::WorkShare(0.63, 0.95, 1.0), RecordingPolicy::kBusyShare);
-    // The time never makes a frame look less busy than its samples, nor counts unmeasured.
-    EXPECT_EQ(RecordingPolicy::WorkShare(0.7, 0.3, 1.0), 0.7);
-    EXPECT_EQ(RecordingPolicy::WorkShare(0.7, 0.3, 0.0), 0.7);
+TEST(RecordingPolicy, WorkShareWeighsRaysOnlyWhenManySamplesAreTraced) {
+    // Few samples traced: the rays are not looked at.
+    EXPECT_EQ(RecordingPolicy::WorkShare(0.2, 5000.0, 1000.0), 0.2);
+    // Many traced, and they were the ones with many rays: the rays say busy.
+    EXPECT_EQ(RecordingPolicy::WorkShare(0.63, 950.0, 1000.0), 0.95);
+    EXPECT_GT(RecordingPolicy::WorkShare(0.63, 950.0, 1000.0), RecordingPolicy::kBusyShare);
+    // The rays never make a frame look less busy than its samples, nor count unmeasured.
+    EXPECT_EQ(RecordingPolicy::WorkShare(0.7, 300.0, 1000.0), 0.7);
+    EXPECT_EQ(RecordingPolicy::WorkShare(0.7, 300.0, 0.0), 0.7);
 }
 
 }  // namespace

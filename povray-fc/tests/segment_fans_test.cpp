@@ -36,12 +36,12 @@ RecordedBlock BlockRays(std::mt19937_64 &rng) {
     SampleRecorder recorder;
     StartRecordingRays(recorder);
     for (int i = 0; i < 200; ++i) {
-        recorder.Begin(b.segments, b.fanOf, b.apexes);
+        recorder.Begin(b.segments, b.fanOf, b.apexes, nullptr, 0);
         const Vec3 d = Normalised(look + Vec3{0.05 * u(rng), 0.05 * u(rng), 0});
         const bool hits = u(rng) > -0.6;
         const double t = hits ? len(rng) : 2e10;
         const double o[3] = {eye.x, eye.y, eye.z}, dd[3] = {d.x, d.y, d.z};
-        RecordRaySegment(o, dd, t);
+        RecordRaySegment(o, dd, t, kUnitNothing);
         if (!hits) continue;
         const Vec3 p = eye + t * d;
         const Vec3 toLight = lights[i % 2] - p;
@@ -50,12 +50,12 @@ RecordedBlock BlockRays(std::mt19937_64 &rng) {
         {
             const double po[3] = {p.x, p.y, p.z}, ld[3] = {l.x, l.y, l.z};
             ShadowSegmentRecord shadow(po, ld, dist);
-            if (i % 5 == 0) shadow.BlockedAt(dist * (0.5 + 0.4 * u(rng)));
+            if (i % 5 == 0) shadow.BlockedAt(dist * (0.5 + 0.4 * u(rng)), kUnitNothing, true);
         }
         if (i % 7 == 0) {
             const Vec3 r = Normalised(Vec3{u(rng), u(rng), u(rng)});
             const double po[3] = {p.x, p.y, p.z}, rd[3] = {r.x, r.y, r.z}, rt = len(rng);
-            RecordRaySegment(po, rd, rt);
+            RecordRaySegment(po, rd, rt, kUnitNothing);
             const Vec3 q = p + rt * r, toOther = lights[(i + 1) % 2] - q;
             const double qDist = Norm3(toOther);
             const Vec3 ql = (1.0 / qDist) * toOther;
@@ -218,16 +218,16 @@ RecordedBlock SkyReflections(std::mt19937_64 &rng, const Vec3 &patch, double pat
     SampleRecorder recorder;
     StartRecordingRays(recorder);
     for (int i = 0; i < 200; ++i) {
-        recorder.Begin(b.segments, b.fanOf, b.apexes);
+        recorder.Begin(b.segments, b.fanOf, b.apexes, nullptr, 0);
         const double eye[3] = {0.3, 2, -20};
         const Vec3 p = patch + Vec3{patchSize * u(rng), 0, patchSize * u(rng)};
         const Vec3 toP = Normalised(p - Vec3{eye[0], eye[1], eye[2]});
         const double d[3] = {toP.x, toP.y, toP.z};
-        RecordRaySegment(eye, d, 10.0);
+        RecordRaySegment(eye, d, 10.0, kUnitNothing);
         const Vec3 r = strays && i % 50 == 0 ? Normalised(Vec3{u(rng), u(rng), u(rng)})
                                    : Normalised(up + Vec3{0.1 * u(rng), 0.1 * u(rng), 0.1 * u(rng)});
         const double po[3] = {p.x, p.y, p.z}, rd[3] = {r.x, r.y, r.z};
-        RecordRaySegment(po, rd, 2e10);
+        RecordRaySegment(po, rd, 2e10, kUnitNothing);
     }
     StopRecordingRays();
     return b;
@@ -281,7 +281,7 @@ TEST(SegmentFans, GrowingAFanKeepsHoldingItsSegments) {
         // b's rays join a's block, as newly traced samples join a replayed block.
         const std::size_t first = a.segments.size();
         SampleRecorder recorder;
-        recorder.Begin(a.segments, a.fanOf, a.apexes);
+        recorder.Begin(a.segments, a.fanOf, a.apexes, nullptr, 0);
         for (const Segment &s : b.segments) {
             a.segments.push_back(s);
             a.fanOf.push_back(BlockFans::kLoose);

@@ -16,7 +16,7 @@ bool OrderSensitive(Search search) {
     std::vector<std::uint8_t> fans;
     FanApexes apexes;
     SampleRecorder recorder;
-    recorder.Begin(segments, fans, apexes);
+    recorder.Begin(segments, fans, apexes, nullptr, 0);
     StartRecordingRays(recorder);
     search();
     StopRecordingRays();
@@ -77,7 +77,7 @@ TEST(TieWatch, TheSlackGrowsWithTheBoxesAndAGrazingDirection) {
     std::vector<std::uint8_t> fans;
     FanApexes apexes;
     SampleRecorder recorder;
-    recorder.Begin(segments, fans, apexes);
+    recorder.Begin(segments, fans, apexes, nullptr, 0);
     StartRecordingRays(recorder);
     const double steep[3] = {0.0, 0.6, 0.8}, grazing[3] = {0.001, 0.6, 0.8};
     TieWatch a(steep, best), b(grazing, best);

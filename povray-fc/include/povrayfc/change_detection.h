@@ -1,8 +1,17 @@
 // Change detection: what differs between the last frame and this one, from their render
 // settings and parse signatures.
+//
+// A ray's result can change only through what it ended on or what it may now meet (see
+// "Units" in povray-fc/README.md). So the units of the two frames are matched by their
+// hashes: a unit of the last frame with no match changed or vanished, and every sample
+// with a segment that ended on it is dirty; a unit of this frame with no match is new, and
+// unless a vanished unit had exactly its geometry (a change of colour, texture or interior
+// alone), its hull goes to the frame's changes, which every segment is tested against.
+// The old geometry needs no hull: a segment that did not end on it did not meet it.
 #ifndef POVRAYFC_CHANGE_DETECTION_H
 #define POVRAYFC_CHANGE_DETECTION_H
 
+#include <cstdint>
 #include <string>
 #include <vector>
 
@@ -13,19 +22,33 @@
 namespace povrayfc {
 
 struct FrameChange {
+    static constexpr std::uint32_t kNew = 0xffffffffu;
+
     // The stored samples belong to another picture (render settings or camera changed):
     // start a new sequence. Implies a non-empty fullReason.
     bool newSequence = false;
     // Non-empty: every pixel must be traced, for this reason (lights, global settings,
-    // an unbounded object...). Empty: only what meets `hulls` changed.
+    // an unbounded object's new shape...). Empty: the rest of this says what changed.
     std::string fullReason;
-    std::vector<Hull> hulls;  // the old and new hulls of every changed object
     // The scene's objects in parse order differ (a change, or the same objects in another
     // order): POV-Ray's bounding tree, and with it which of two surfaces tied in depth it
     // meets first, may differ (tie_watch.h).
     bool orderChanged = false;
+    // Per unit of this frame: the unit of the last frame it continues (its index there):
+    // unchanged, or with the same geometry (its texture or interior changed; that one is
+    // also in `vanished`); kNew for a unit whose shape is new.
+    std::vector<std::uint32_t> continues;
+    // The last frame's units that changed or vanished (their indices there), and, for each,
+    // whether the shadow tests its opaque surfaces answered still hold: a unit of this frame
+    // has its shape and is opaque (its texture alone changed).
+    std::vector<std::uint32_t> vanished;
+    std::vector<std::uint8_t> shadowsKept;
+    // The hulls of this frame's units whose geometry is new.
+    std::vector<Hull> hulls;
 
-    bool NothingChanged() const { return fullReason.empty() && hulls.empty() && !orderChanged; }
+    bool NothingChanged() const {
+        return fullReason.empty() && hulls.empty() && vanished.empty() && !orderChanged;
+    }
 };
 
 // Compares frame `now` with frame `last` (both parsed completely). `photons`: the scene
@@ -33,8 +56,8 @@ struct FrameChange {
 FrameChange CompareFrames(const FrameSetup &lastSetup, const SceneSignature &last, const FrameSetup &setup,
                           const SceneSignature &now, bool photons);
 
-// The hull a changed object's signature stands for.
-Hull ObjectHull(const ObjectSignature &object);
+// The hull a unit's signature stands for.
+Hull UnitHull(const UnitSignature &unit);
 
 }  // namespace povrayfc
 

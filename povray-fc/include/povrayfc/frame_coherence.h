@@ -17,6 +17,7 @@
 #include <memory>
 #include <string>
 
+#include "povrayfc/change_detection.h"
 #include "povrayfc/change_index.h"
 #include "povrayfc/dirty_mask.h"
 #include "povrayfc/frame_plan.h"
@@ -25,6 +26,7 @@
 #include "povrayfc/recording_policy.h"
 #include "povrayfc/sample_store.h"
 #include "povrayfc/scene_signature.h"
+#include "povrayfc/unit_ids.h"
 
 namespace povrayfc {
 
@@ -33,13 +35,12 @@ class FrameCoherence {
     // The process-wide session (POV-Ray keeps nothing else across frames).
     static FrameCoherence &Get();
 
-    // The least a stored pixel takes (its final colour and one camera sample).
-    static constexpr std::size_t kMinStoreBytesPerPixel = 20 + sizeof(StoredSample);
+    // The store's memory budget when Frame_Coherence_Memory does not set one: half of the
+    // machine's memory.
+    static std::size_t DefaultBudgetBytes();
 
     // Starts a frame. `enabled` is the Frame_Coherence option; when false the session
-    // forgets everything and the frame renders exactly as in POV-Ray. Throws
-    // std::runtime_error (a one-line message) when the store for this image could not fit
-    // in memory.
+    // forgets everything and the frame renders exactly as in POV-Ray.
     void BeginFrame(bool enabled, const FrameSetup &setup, const void *sceneKey, const SceneEffects &effects);
 
     // What the render threads do this frame (valid until the next BeginFrame).
@@ -58,9 +59,11 @@ class FrameCoherence {
 
     void Forget();
     void NewStore(const FrameSetup &setup);
-    static void CheckMemory(const FrameSetup &setup);
     void PlanFrame(const FrameSetup &setup, const SceneSignature &signature, const SceneEffects &effects,
                    const std::string &inexact);
+    // Gives this frame's units their ids (afresh when every stored sample is traced again)
+    // and marks the changed ones for the render threads.
+    void NumberUnits(const FrameChange &change, std::size_t unitCount, bool afresh);
 
     // The last frame parsed with fc on (kept while recording is paused, to see when a
     // frame can be coherent again).
@@ -71,6 +74,9 @@ class FrameCoherence {
     std::unique_ptr<SampleStore> store_;
     ChangeIndex changes_;
     ChangeDrift drift_;  // the changes of recent frames, for the clearances samples keep
+    UnitIds unitIds_;
+    std::vector<std::uint8_t> changedUnits_;  // by unit id: changed or vanished this frame
+    std::vector<std::uint32_t> changedIds_;   // the ids set in changedUnits_
     FrameCounters counters_;
     DirtyMask tracedMask_;
     FramePlan plan_;
@@ -83,7 +89,7 @@ class FrameCoherence {
     FrameStats current_, last_;
     std::chrono::steady_clock::duration bookkeeping_{};
     std::chrono::steady_clock::time_point frameStart_{};
-    double fullFrameSeconds_ = 0.0;  // render time of the last full recorded frame
+    double fullFrameRays_ = 0.0;  // rays of the last full recorded frame
 };
 
 }  // namespace povrayfc

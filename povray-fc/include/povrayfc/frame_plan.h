@@ -5,6 +5,7 @@
 
 #include <atomic>
 #include <cstdint>
+#include <vector>
 
 #include "povrayfc/change_drift.h"
 #include "povrayfc/change_index.h"
@@ -21,10 +22,13 @@ struct FrameCounters {
     // Samples a change's cones reached: tested segment by segment, or found clean by the
     // clearance they kept from an earlier frame (change_drift.h).
     std::atomic<std::uint64_t> testedSamples{0}, clearedSamples{0};
+    // Blocks whose record the memory budget left out: traced in full when next rendered;
+    // and the samples traced in blocks it had left out.
+    std::atomic<std::uint64_t> overBudgetBlocks{0}, unrecordedSamples{0};
 
     void Reset() {
         tracedPixels = reusedPixels = tracedSamples = reusedSamples = reusedBlocks = replayedBlocks = 0;
-        testedSamples = clearedSamples = 0;
+        testedSamples = clearedSamples = overBudgetBlocks = unrecordedSamples = 0;
     }
 };
 
@@ -38,6 +42,17 @@ struct FramePlan {
     Mode mode = Mode::kIdle;
     bool everythingDirty = true;       // no stored sample may be reused this frame
     const ChangeIndex *changes = nullptr;  // what changed; empty when nothing did
+    // This frame's unit ids (unit_ids.h), by the index the parser wrote into the objects.
+    const std::uint32_t *unitIds = nullptr;
+    std::size_t unitCount = 0;
+    // By unit id: whether the unit changed or vanished this frame, so that a segment that
+    // ended on it is dirty; and the UnitMaskBit of every such id.
+    static constexpr std::uint8_t kUnitKept = 0;
+    static constexpr std::uint8_t kUnitRecoloured = 1;  // same shape, still opaque: shadow
+                                                        // tests its surfaces darkened hold
+    static constexpr std::uint8_t kUnitChanged = 2;
+    const std::vector<std::uint8_t> *changedUnits = nullptr;
+    std::uint64_t changedUnitMask = 0;
     // The ordered list of the scene's objects differs from the last frame's (something
     // changed, appeared, vanished or moved in it): the bounding tree may have another
     // shape, so every order-sensitive sample is dirty (tie_watch.h).

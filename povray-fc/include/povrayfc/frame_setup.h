@@ -34,6 +34,9 @@ struct FrameSetup {
 
     // Options of fc itself.
     int gridResolution = 0;       // voxels of the change index along its longest axis; 0 = automatic
+    // Frame_Coherence_Memory (given in MiB): the most the store may hold, in bytes; 0 = the
+    // default (half of the machine's memory). Blocks past it are traced in full.
+    std::uint64_t memoryBudgetBytes = 0;
     std::string statsFile;        // per-frame CSV, empty for none
     std::string maskDir;          // folder for per-frame re-traced pixel masks, empty for none
 

@@ -15,7 +15,8 @@ struct FrameStats {
     std::uint64_t pixels = 0;     // pixels in the render area
     std::uint64_t traced = 0;     // pixels with at least one camera sample traced
     std::uint64_t reused = 0;     // pixels made only of stored samples (or stored whole)
-    std::uint64_t changedHulls = 0;    // changed regions the stored samples were tested against
+    std::uint64_t changedHulls = 0;    // new shapes the stored samples' segments were tested against
+    std::uint64_t changedUnits = 0;    // units that changed or vanished: what a segment ended on
     std::uint64_t samplesTraced = 0;   // camera samples traced (AA samples included)
     std::uint64_t samplesReused = 0;   // camera samples whose stored colour was reused
     // Stored samples a change's cones reached: tested segment by segment, or found clean by
@@ -24,6 +25,7 @@ struct FrameStats {
     std::uint64_t rays = 0;       // rays traced (POV-Ray's "Rays:" count)
     double bookkeepingSeconds = 0.0;  // change detection and statistics, outside the render threads
     std::uint64_t storeBytes = 0;     // stored samples, segments and pixels
+    std::uint64_t overBudgetBlocks = 0;  // blocks the memory budget left out of the store
     double renderSeconds = 0.0;       // wall time from fc's frame start to its end (tracing)
 
     // One human-readable line for the render log.

@@ -50,6 +50,11 @@ struct Box {
                p.z <= hi.z;
     }
     // True when b lies inside this box (faces may coincide). An empty b is inside anything.
+    // p lies within `distance` of the box (inside it, for 0).
+    bool Near(const Vec3 &p, double distance) const {
+        return p.x >= lo.x - distance && p.x <= hi.x + distance && p.y >= lo.y - distance && p.y <= hi.y + distance &&
+               p.z >= lo.z - distance && p.z <= hi.z + distance;
+    }
     bool Contains(const Box &b) const {
         if (b.Empty()) return true;
         return b.lo.x >= lo.x && b.hi.x <= hi.x && b.lo.y >= lo.y && b.hi.y <= hi.y &&

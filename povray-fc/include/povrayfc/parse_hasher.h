@@ -20,7 +20,15 @@
 // bits that travel with the hashes: a scope collects those of what it parses and of the
 // identifiers it uses, so a finish declared with crand (textures.inc has one) only
 // counts when an item of the scene uses it.
-// A SignatureBuilder sorts the finished items into a SceneSignature.
+// Objects get hashes of their own, so that a change of one part of a model changes only
+// that part (see "Units" in povray-fc/README.md): every object the parser builds is hashed
+// in an object scope, which besides its hash keeps
+//  - a shell: everything but its CSG children's scopes and the contents of the object
+//    identifiers it copies (a copy carries the hashes of its declaration's objects), and
+//  - a geometry hash: the shell without its appearance (texture, pigment, normal, finish,
+//    interior, material), so that a change of colour alone is told from a change of shape.
+// A SignatureBuilder (signature_builder.h) sorts the finished items and units into a
+// SceneSignature.
 //
 // Nothing here knows POV-Ray's types; the hooks translate.
 #ifndef POVRAYFC_PARSE_HASHER_H
@@ -32,9 +40,6 @@
 #include <unordered_map>
 #include <vector>
 
-#include "povrayfc/geometry.h"
-#include "povrayfc/scene_signature.h"
-
 namespace povrayfc {
 
 // splitmix64's finaliser: a bijection on 64-bit words with full avalanche.
@@ -45,6 +50,11 @@ inline std::uint64_t HashFinalize64(std::uint64_t x) {
     x *= 0x94d049bb133111ebULL;
     x ^= x >> 31;
     return x;
+}
+
+// Two hashes into one, order mattering (b changed or moved changes the result).
+inline std::uint64_t CombineHashes(std::uint64_t a, std::uint64_t b) {
+    return HashFinalize64(a + b * 0x9e3779b97f4a7c15ULL + 0x632be59bd9b4e019ULL);
 }
 
 // Inexact effects the parser sees, as bits (see above).
@@ -87,8 +97,14 @@ public:
         if (!enabled_) return;
         Scope &scope = Top();
         scope.hash = Mix(scope.hash, word);
-        if (scope.trackShell) scope.shell = Mix(scope.shell, word);
+        if (scope.trackShell) {
+            scope.shell = Mix(scope.shell, word);
+            if (scope.appearance == 0) scope.geometry = Mix(scope.geometry, word);
+        }
     }
+    // A word that counts in the hash but is carried elsewhere for the shell and geometry
+    // (the content of an object identifier the parser copies): those get a fixed marker.
+    void MixCarriedWord(std::uint64_t word);
     void MixToken(int tokenId) { MixWord(0x746f6b0000000000ULL ^ static_cast<std::uint32_t>(tokenId)); }
     void MixInt(long long value) { MixWord(static_cast<std::uint64_t>(value)); }
     // Bit pattern of the value: 0.0 and -0.0 differ, which only errs on the safe side.
@@ -114,18 +130,37 @@ public:
     unsigned Effects() const { return Top().effects; }
 
     // --- scopes ---
-    // trackShell: the scope also keeps a "shell" hash, of everything but the scopes of its
-    // children (PushChildScope): a union whose own tokens are unchanged, but not its
-    // children's, has the same shell, and only its changed children changed.
+    // trackShell: the scope also keeps a shell and a geometry hash (see above).
     void PushScope(bool trackShell = false);
-    // A child's scope (an object inside a CSG item), popped with PopChildScope.
-    void PushChildScope() { PushScope(false); }
-    // Ends a child's scope: with keep, its hash goes into the parent's hash and a fixed
-    // marker into the parent's shell, and the child's hash is returned; without (the
-    // attempt found no child), it is dropped.
-    std::uint64_t PopChildScope(bool keep);
-    // The shell of the innermost scope (0 when it keeps none).
+    // The shell and geometry hash of the innermost scope (0 when it keeps none).
     std::uint64_t Shell() const { return Top().trackShell ? Finish(Top().shell) : 0; }
+    std::uint64_t Geometry() const { return Top().trackShell ? Finish(Top().geometry) : 0; }
+
+    // --- objects ---
+    // An object's scope: PushObjectScope when the parser starts on an object, PopObjectScope
+    // when it has it, saying how the object relates to the scope around it:
+    enum class ObjectRole {
+        kChild,       // a child of the CSG being parsed: the parent's shell gets a marker
+        kSameObject,  // the object `object { ... }` wraps: it becomes the wrapper's object,
+                      // so its shell and geometry are the wrapper's too
+        kOther,       // anything else (a clip, a bound, an object pattern, a declaration):
+                      // all of it counts in the parent's shell and geometry
+        kNone,        // the parser found no object: the scope is dropped
+    };
+    struct ObjectHashes {
+        std::uint64_t hash = 0, shell = 0, geometry = 0;
+        unsigned effects = 0;
+    };
+    void PushObjectScope() { PushScope(true); }
+    ObjectHashes PopObjectScope(ObjectRole role);
+    // Tokens between BeginAppearance and EndAppearance (a texture, pigment, normal, finish,
+    // interior or material of an object) do not count in its geometry hash.
+    void BeginAppearance() {
+        if (enabled_) ++Top().appearance;
+    }
+    void EndAppearance() {
+        if (enabled_ && Top().appearance > 0) --Top().appearance;
+    }
     // Ends the innermost scope and returns its hash (and, with `effects`, its effects);
     // with mixIntoParent the hash is also mixed into the scope around it and the
     // effects go there too. The root scope is never popped: popping it returns its
@@ -145,10 +180,11 @@ public:
     // (callgrind). No scope may be pushed or popped in between.
     void BeginToken() {
         if (!enabled_) return;
-        token_ = Scope{kSeed, 0, kSeed, false};
+        token_ = Scope{kSeed, 0, kSeed, kSeed, false, 0};
         inToken_ = true;
     }
-    std::uint64_t EndToken(unsigned *effects) {
+    // carried: the token is an object identifier the parser copies (see MixCarriedWord).
+    std::uint64_t EndToken(unsigned *effects, bool carried = false) {
         if (!enabled_) {
             if (effects != nullptr) *effects = 0;
             return 0;
@@ -156,7 +192,10 @@ public:
         inToken_ = false;
         const std::uint64_t hash = Finish(token_.hash);
         if (effects != nullptr) *effects = token_.effects;
-        MixWord(hash);
+        if (carried)
+            MixCarriedWord(hash);
+        else
+            MixWord(hash);
         NoteEffects(token_.effects);
         return hash;
     }
@@ -194,7 +233,9 @@ private:
         std::uint64_t hash;
         unsigned effects;
         std::uint64_t shell;
+        std::uint64_t geometry;
         bool trackShell;
+        int appearance;  // BeginAppearance depth
     };
     struct Slot {
         std::uint64_t hash;
@@ -202,124 +243,12 @@ private:
     };
     static constexpr std::uint64_t kSeed = 0x243f6a8885a308d3ULL;  // a fresh scope's hash (pi's fraction)
     std::vector<Scope> scopes_;
-    Scope token_{kSeed, 0, kSeed, false};   // BeginToken ... EndToken
+    Scope token_{kSeed, 0, kSeed, kSeed, false, 0};   // BeginToken ... EndToken
     bool inToken_ = false;                  // token_ is the innermost scope
     Scope &Top() { return inToken_ ? token_ : scopes_.back(); }
     const Scope &Top() const { return inToken_ ? token_ : scopes_.back(); }
     std::unordered_map<const void *, Slot> slots_;
     bool enabled_ = true;
-};
-
-// What a finished top-level item was, as the parser hook classifies it.
-enum class ParseItemClass {
-    kDiscard,  // not part of the scene's content (a directive written without '#', end of file)
-    kCamera,
-    kGlobal,   // global_settings, fog, rainbow, sky_sphere, background, media, default...
-    kObject,   // anything Parse_Object returned: objects, light sources, CSG with lights
-};
-
-// Collects the items of one parse into a SceneSignature.
-class SignatureBuilder {
-public:
-    SignatureBuilder() { Reset(); }
-
-    // Start a new parse. Reads POVRAYFC_DEBUG_SIGNATURES from the environment.
-    void Reset();
-
-    // One top-level item: BeginItem when its first token was read (label: that token's
-    // text, line: its line, both only for the debug listing), SetItemObject for an
-    // object once its bounds are final, EndItem with the item's hash.
-    void BeginItem(const char *label, long line);
-    // POV-Ray's single-precision bounding box (lower left corner and lengths).
-    // `unbounded`: the object's INFINITE_FLAG, or it is inverted (its inside is
-    // everything outside its surface). A box that is not finite or is larger than
-    // kHugeLength on some axis makes the object infinite too.
-    void SetItemObject(const float lowerLeft[3], const float lengths[3], bool unbounded,
-                       bool isLightSource);
-    // After SetItemObject, for a sphere, cylinder or cone: every point of the object lies
-    // within `radius` of the world-space segment [a, b].
-    void SetItemCapsule(const double a[3], const double b[3], double radius);
-    // After SetItemObject, for a CSG item whose children were hashed one by one: each
-    // direct child with its own hash and world-space box (as SetItemObject), and the
-    // item's shell hash (see ParseHasher::PushScope). A child may get a capsule too.
-    void AddItemChild(std::uint64_t hash, const float lowerLeft[3], const float lengths[3], bool unbounded,
-                      bool isLightSource);
-    void SetChildCapsule(const double a[3], const double b[3], double radius);
-    void SetItemCapsule(const Capsule &c) {
-        const double a[3] = {c.a.x, c.a.y, c.a.z}, b[3] = {c.b.x, c.b.y, c.b.z};
-        SetItemCapsule(a, b, c.radius);
-    }
-    void SetChildCapsule(const Capsule &c) {
-        const double a[3] = {c.a.x, c.a.y, c.a.z}, b[3] = {c.b.x, c.b.y, c.b.z};
-        SetChildCapsule(a, b, c.radius);
-    }
-    void SetItemShell(std::uint64_t shell) { current_.shell = shell; }
-    // The item is a light_group: its lights light only its other children, so its place
-    // is theirs (the lights' boxes are unbounded) and a light's change is theirs.
-    void MarkLightGroup() { current_.lightGroup = true; }
-    // addedLights: the item added light sources to the scene's global light list
-    // (a light_source, or a union containing one); its hash then goes into `lights`.
-    // effects: the inexact effects the item's scope collected (InexactEffect bits).
-    void EndItem(ParseItemClass itemClass, std::uint64_t hash, bool addedLights,
-                 unsigned effects = 0);
-
-    // Mix a hash that is not an item into camera / lights / global (e.g. the default{}
-    // block reached through a directive, or the final language version).
-    void MixCamera(std::uint64_t hash) { MixInto(signature_.camera, hash); }
-    void MixLights(std::uint64_t hash) { MixInto(signature_.lights, hash); }
-    void MixGlobal(std::uint64_t hash) { MixInto(signature_.global, hash); }
-    void MixGlobal(std::uint64_t hash, unsigned effects) {
-        MixGlobal(hash);
-        NoteEffects(effects);
-    }
-
-    // Effects frame coherence cannot reproduce exactly; each name is kept once, in the
-    // order first seen.
-    void NoteInexact(const char *name);
-    void NoteEffects(unsigned effects);                  // InexactEffect bits
-    void NoteMedia(int method, double jitter) { NoteEffects(MediaEffects(method, jitter)); }
-    void NoteFinish(double crand, bool subsurface) { NoteEffects(FinishEffects(crand, subsurface)); }
-    void NoteAreaLight(bool areaLight, bool jitter);     // area_light ... jitter
-    void NoteRadiosity(bool enabled) { if (enabled) NoteInexact("radiosity"); }
-    void NotePhotons(bool enabled) { if (enabled) NoteInexact("photons"); }
-    void NoteSubsurface(bool enabled) { if (enabled) NoteInexact("subsurface"); }
-
-    const SceneSignature &Signature() const { return signature_; }
-    // Marks the signature complete and hands it over (the builder is Reset after).
-    // With POVRAYFC_DEBUG_SIGNATURES set (and not "0"), lists every item on stderr.
-    SceneSignature Finish();
-
-    // Padding and "huge" threshold for SetItemObject.
-    static constexpr double kRelativePad = 1e-4;
-    static constexpr double kAbsolutePad = 1e-6;
-    static constexpr double kHugeLength = 1e9;
-    // The conservative world box for POV-Ray's float box; false when it is unbounded.
-    static bool ObjectBox(const float lowerLeft[3], const float lengths[3], Box &box);
-
-    // The debug listing of the items so far (what Finish prints).
-    std::string DebugListing() const;
-
-private:
-    struct Item {
-        ParseItemClass itemClass = ParseItemClass::kDiscard;
-        std::uint64_t hash = 0;
-        std::string label;
-        long line = 0;
-        bool hasObject = false, infinite = false, isLight = false, addedLights = false;
-        Box bounds;
-        bool hasCapsule = false;
-        Capsule capsule;
-        std::uint64_t shell = 0;
-        bool lightGroup = false;
-        std::vector<ChildSignature> children;
-    };
-    static void MixInto(std::uint64_t &target, std::uint64_t hash);
-    static bool MakeCapsule(const double a[3], const double b[3], double radius, Capsule &capsule);
-
-    SceneSignature signature_;
-    bool debug_ = false;
-    Item current_;
-    std::vector<Item> items_;   // only kept when debugging
 };
 
 // True when POVRAYFC_DEBUG_SIGNATURES is set to something other than "" or "0".

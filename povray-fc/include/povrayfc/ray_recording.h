@@ -4,9 +4,10 @@
 // anti-aliasing, reflected, refracted, continued and shadow rays). When the thread is
 // not recording (fc off, or a frame fc renders without recording) the call is one
 // thread-local load and a branch, so the hooks stay in the hot path unconditionally.
-// When it is, the segment is appended to the sample's list as 28 bytes: nothing is
-// walked or looked up while tracing (a voxel walk per ray used to cost three times the
-// ray itself); the next frame tests the stored segments against what changed.
+// When it is, the segment is appended to the sample's list as 32 bytes, with the id of the
+// unit it ended on: nothing is walked or looked up while tracing (a voxel walk per ray
+// used to cost three times the ray itself); the next frame tests the stored segments
+// against what changed.
 #ifndef POVRAYFC_RAY_RECORDING_H
 #define POVRAYFC_RAY_RECORDING_H
 
@@ -15,6 +16,7 @@
 #include <cstdint>
 #include <vector>
 
+#include "povrayfc/scene_signature.h"
 #include "povrayfc/segment.h"
 
 namespace povrayfc {
@@ -83,22 +85,29 @@ struct FanApexes {
 class SampleRecorder {
   public:
     // Starts a sample whose segments go to the end of `segments` (and their fans to
-    // `fanOf`, against the block's `apexes`).
-    void Begin(std::vector<Segment> &segments, std::vector<std::uint8_t> &fanOf, FanApexes &apexes) {
+    // `fanOf`, against the block's `apexes`). `unitIds[i]` is the id of the frame's unit i
+    // (unit_ids.h), for `unitCount` units.
+    void Begin(std::vector<Segment> &segments, std::vector<std::uint8_t> &fanOf, FanApexes &apexes,
+               const std::uint32_t *unitIds, std::size_t unitCount) {
         segments_ = &segments;
         fanOf_ = &fanOf;
         apexes_ = &apexes;
+        unitIds_ = unitIds;
+        unitCount_ = unitCount;
         first_ = segments.size();
         everything_ = false;
         deep_ = false;
         orderSensitive_ = false;
     }
-    void Add(const double origin[3], const double direction[3], double tmax) {
+    // A ray that ended on the frame's unit `unit` (the index the parser wrote into what it
+    // hit, or kUnitNothing).
+    void Add(const double origin[3], const double direction[3], double tmax, std::uint32_t unit) {
         Segment s;
         if (!MakeSegment(origin, direction, tmax, s)) {
             everything_ = true;  // a ray that cannot be placed: any change must re-trace it
             return;
         }
+        s.unit = UnitId(unit);
         segments_->push_back(s);
         const std::uint8_t fan = apexes_->OriginFan(origin);
         fanOf_->push_back(fan);
@@ -110,12 +119,16 @@ class SampleRecorder {
         deep_ |= fan == FanApexes::kLoose;
     }
     // A shadow ray towards the light point `aim` (reaching it, or stopped short by tmax).
-    void AddAimed(const double origin[3], const double direction[3], double tmax, const double aim[3]) {
+    // `opaqueBlocker`: an opaque surface of `unit` ended the test (kOpaqueBlocker).
+    void AddAimed(const double origin[3], const double direction[3], double tmax, const double aim[3],
+                  std::uint32_t unit, bool opaqueBlocker = false) {
         Segment s;
         if (!MakeSegment(origin, direction, tmax, s)) {
             everything_ = true;
             return;
         }
+        s.unit = UnitId(unit);
+        if (opaqueBlocker && s.unit != Segment::kNoUnit) s.unit |= Segment::kOpaqueBlocker;
         segments_->push_back(s);
         fanOf_->push_back(apexes_->AimFan(aim, deep_));
     }
@@ -135,9 +148,20 @@ class SampleRecorder {
     }
 
   private:
+    // The id a segment that ended on the frame's unit `unit` records. An object the parser
+    // gave no unit makes the sample depend on everything.
+    std::uint32_t UnitId(std::uint32_t unit) {
+        if (unit == kUnitNothing) return Segment::kNoUnit;
+        if (unit < unitCount_ && unitIds_[unit] < Segment::kOpaqueBlocker) return unitIds_[unit];
+        everything_ = true;
+        return Segment::kNoUnit;
+    }
+
     std::vector<Segment> *segments_ = nullptr;
     std::vector<std::uint8_t> *fanOf_ = nullptr;
     FanApexes *apexes_ = nullptr;
+    const std::uint32_t *unitIds_ = nullptr;
+    std::size_t unitCount_ = 0;
     std::size_t first_ = 0;
     bool everything_ = false;
     bool deep_ = false;  // a reflected or refracted ray was recorded in this sample
@@ -149,44 +173,61 @@ extern thread_local SampleRecorder *tlsRecorder;
 }  // namespace detail
 
 // Adds the segment origin + t*direction, t in [0, tmax], to the sample being recorded on
-// this thread. tmax may be huge or infinite (a ray that hit nothing).
-inline void RecordRaySegment(const double origin[3], const double direction[3], double tmax) {
-    if (detail::tlsRecorder) detail::tlsRecorder->Add(origin, direction, tmax);
+// this thread. tmax may be huge or infinite (a ray that hit nothing); `unit` is the index
+// the parser wrote into the object the ray ended on, or kUnitNothing.
+inline void RecordRaySegment(const double origin[3], const double direction[3], double tmax, std::uint32_t unit) {
+    if (detail::tlsRecorder) detail::tlsRecorder->Add(origin, direction, tmax, unit);
 }
 
-// A shadow test's segment, recorded when the test returns: to the light, or only up to
-// a fully opaque blocker when the test found one (BlockedAt), since nothing beyond it
-// can change the answer. Costs one thread-local test when the thread is not recording.
+// A shadow test's segments, in pieces: up to each transparent object the test passes
+// (PassedAt, which shaped the light's colour there), and the last one to the light or to
+// a fully opaque blocker (BlockedAt; nothing beyond it can change the answer), recorded
+// when the test returns. POV-Ray's shadow loop moves its ray's origin past each transparent
+// object and shortens the remaining depth by as much: this reads both where they live.
+// Costs one thread-local test when the thread is not recording.
 class ShadowSegmentRecord {
   public:
-    ShadowSegmentRecord(const double origin[3], const double direction[3], double depth)
-        : recorder_(detail::tlsRecorder), depth_(depth), reach_(depth) {
+    // `origin` and `depth` (the distance to the light) are the shadow loop's own variables.
+    ShadowSegmentRecord(const double *origin, const double direction[3], const double &depth)
+        : recorder_(detail::tlsRecorder), origin_(origin), depth_(depth) {
         if (!recorder_) return;
         for (int i = 0; i < 3; ++i) {
-            origin_[i] = origin[i];
             direction_[i] = direction[i];
+            aim_[i] = origin[i] + depth * direction[i];
         }
     }
     ~ShadowSegmentRecord() {
         if (!recorder_) return;
-        const double aim[3] = {origin_[0] + depth_ * direction_[0], origin_[1] + depth_ * direction_[1],
-                               origin_[2] + depth_ * direction_[2]};
-        recorder_->AddAimed(origin_, direction_, reach_, aim);
+        recorder_->AddAimed(origin_, direction_, blocked_ ? blockedAt_ : depth_, aim_, blocker_, opaque_);
     }
     ShadowSegmentRecord(const ShadowSegmentRecord &) = delete;
     ShadowSegmentRecord &operator=(const ShadowSegmentRecord &) = delete;
 
-    // The depth the test started with (distance to the light along direction).
-    double Depth() const { return depth_; }
-    // An opaque blocker at `distance` from the original origin answered the test.
-    void BlockedAt(double distance) {
-        if (distance >= 0.0 && distance < reach_) reach_ = distance;
+    // The test passed a transparent object (the frame's unit `unit`) at `distance` from the
+    // current origin; before the loop moves its origin there.
+    void PassedAt(double distance, std::uint32_t unit) {
+        if (recorder_) recorder_->AddAimed(origin_, direction_, distance, aim_, unit);
+    }
+    // A blocker (unit `unit`) at `distance` from the current origin answered the test;
+    // `opaque`: POV-Ray took the surface there for opaque without looking at its texture
+    // (its OPAQUE_FLAG), so only the unit's shape and its staying opaque matter.
+    void BlockedAt(double distance, std::uint32_t unit, bool opaque) {
+        if (distance < 0.0) return;
+        blocked_ = true;
+        blockedAt_ = distance;
+        blocker_ = unit;
+        opaque_ = opaque;
     }
 
   private:
     SampleRecorder *recorder_;
-    double origin_[3] = {0, 0, 0}, direction_[3] = {0, 0, 0};
-    double depth_, reach_;
+    const double *origin_;
+    const double &depth_;
+    double direction_[3] = {0, 0, 0}, aim_[3] = {0, 0, 0};
+    bool blocked_ = false;
+    double blockedAt_ = 0.0;
+    std::uint32_t blocker_ = kUnitNothing;
+    bool opaque_ = false;
 };
 
 // Routes this thread's RecordRaySegment() calls into `recorder` until StopRecordingRays().

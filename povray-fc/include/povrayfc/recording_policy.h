@@ -24,20 +24,19 @@ class RecordingPolicy {
     static constexpr double kBusyShare = 0.8;
     static constexpr int kMaxBackoff = 16;
 
-    // Above this share of samples traced, a coherent frame's time is weighed too.
-    static constexpr double kTimedFrom = 0.5;
+    // Above this share of samples traced, a coherent frame's rays are weighed too.
+    static constexpr double kRaysWeighedFrom = 0.5;
 
     bool Paused() const { return paused_; }
 
     // The share of a full frame's work a coherent frame did: its samples traced / taken,
-    // or, once that is over kTimedFrom, its render time against the sequence's last full
-    // recorded frame's, if larger. Samples differ in cost: where the changing object is
-    // the expensive one (TrueType text whose string changes each frame, in Debian's
-    // speclr), 63% of the samples take all of the time. Below kTimedFrom the time is not
-    // looked at, so a slow moment of the machine cannot pause a frame that clearly pays.
-    static double WorkShare(double samplesShare, double seconds, double fullFrameSeconds) {
-        if (samplesShare <= kTimedFrom || !(fullFrameSeconds > 0.0)) return samplesShare;
-        return std::max(samplesShare, seconds / fullFrameSeconds);
+    // or, once that is over kRaysWeighedFrom, its rays against the sequence's last full
+    // recorded frame's, if larger. Samples differ in cost: a sample through glass or a
+    // mirror traces many rays, one that hits a wall few. Counts, not time: the same frames
+    // pause at the same place in every run, whatever else the machine is doing.
+    static double WorkShare(double samplesShare, double rays, double fullFrameRays) {
+        if (samplesShare <= kRaysWeighedFrom || !(fullFrameRays > 0.0)) return samplesShare;
+        return std::max(samplesShare, rays / fullFrameRays);
     }
 
     // A coherent recorded frame, or a wasted full one, ended (not a sequence's first frame).

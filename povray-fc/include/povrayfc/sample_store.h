@@ -19,6 +19,7 @@
 #define POVRAYFC_SAMPLE_STORE_H
 
 #include <algorithm>
+#include <atomic>
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
@@ -29,6 +30,10 @@
 #include "povrayfc/segment_fans.h"
 
 namespace povrayfc {
+
+// A unit id's bit in a 64-bit mask of ids (BlockRecord::unitMask): a block none of whose
+// bits is among the frame's changed units' has no segment that ended on one.
+inline std::uint64_t UnitMaskBit(std::uint32_t id) { return std::uint64_t(1) << ((id * 0x9E3779B1u) >> 26); }
 
 struct StoredSample {
     static constexpr std::uint32_t kEverything = 0xffffffffu;  // segmentCount: any change dirties it
@@ -79,6 +84,9 @@ struct BlockRecord {
     bool fansBuilt = false;
     bool hasEverything = false; // a sample depends on everything (any change dirties it)
     bool hasOrderSensitive = false;  // a sample is StoredSample::orderSensitive
+    // UnitMaskBit of every unit a segment of the record ended on (a superset once samples
+    // are traced again in place: bits are never taken out).
+    std::uint64_t unitMask = 0;
 
     static constexpr int kGroupPixels = 8;
 
@@ -113,22 +121,41 @@ struct BlockRecord {
 // One slot per render block, by POV-Ray's block serial number. A slot is touched by one
 // thread at a time (the one rendering that block); Reset and the statistics run between
 // frames.
+//
+// The store keeps within a memory budget: a block whose record would take it past the
+// budget is not kept (Keep says so), and is traced in full whenever it is rendered, until
+// records elsewhere shrink or go. What blocks fit depends on the order threads finish
+// them in; what a frame shows never does.
 class SampleStore {
   public:
+    static constexpr std::size_t kNoBudget = ~std::size_t(0);
+
     SampleStore() = default;
-    explicit SampleStore(std::size_t blocks) : blocks_(blocks), touched_(blocks, 0) {}
+    explicit SampleStore(std::size_t blocks, std::size_t budgetBytes = kNoBudget)
+        : blocks_(blocks), bytes_(blocks, 0), touched_(blocks, 0), leftOut_(blocks, 0), budget_(budgetBytes) {}
 
     std::size_t BlockCount() const { return blocks_.size(); }
     // The stored record of block `serial`, or nullptr (never rendered, or out of range).
     // Mutable for the thread rendering that block (it builds the record's cones).
     BlockRecord *Find(std::size_t serial) const { return serial < blocks_.size() ? blocks_[serial].get() : nullptr; }
-    // Replaces block `serial`'s record (ignored out of range).
-    void Put(std::size_t serial, std::unique_ptr<BlockRecord> record) {
-        if (serial < blocks_.size()) blocks_[serial] = std::move(record);
+    // Replaces block `serial`'s record (ignored out of range), or drops it when keeping it
+    // would pass the budget; returns whether it was kept.
+    bool Put(std::size_t serial, std::unique_ptr<BlockRecord> record) {
+        if (serial >= blocks_.size()) return false;
+        blocks_[serial] = std::move(record);
+        return Keep(serial);
     }
+    // Block `serial`'s record changed size in place: accounts for it, and drops it when it
+    // no longer fits the budget. Returns whether it is kept.
+    bool Keep(std::size_t serial);
     void Clear() {
-        for (auto &b : blocks_) b.reset();
+        for (std::size_t i = 0; i < blocks_.size(); ++i) Drop(i);
     }
+    // Block `serial` has no record because the budget left it out.
+    bool LeftOut(std::size_t serial) const { return serial < leftOut_.size() && leftOut_[serial]; }
+    // What the records hold now, and the budget.
+    std::size_t RecordBytes() const { return total_.load(std::memory_order_relaxed); }
+    std::size_t BudgetBytes() const { return budget_; }
 
     // Block `serial` was rendered (or reused) this frame. From the thread rendering it.
     void Touch(std::size_t serial) {
@@ -139,7 +166,7 @@ class SampleStore {
     // changes, so it must not be reused later. Between frames.
     void ForgetUntouched() {
         for (std::size_t i = 0; i < blocks_.size(); ++i) {
-            if (!touched_[i]) blocks_[i].reset();
+            if (!touched_[i]) Drop(i);
             touched_[i] = 0;
         }
     }
@@ -149,8 +176,14 @@ class SampleStore {
     std::size_t SegmentCount() const;
 
   private:
+    void Drop(std::size_t serial);
+
     std::vector<std::unique_ptr<BlockRecord>> blocks_;
+    std::vector<std::size_t> bytes_;     // per block: what its record was last counted at
     std::vector<std::uint8_t> touched_;  // per block, this frame
+    std::vector<std::uint8_t> leftOut_;  // per block: the budget dropped its record
+    std::atomic<std::size_t> total_{0};  // the sum of bytes_
+    std::size_t budget_ = kNoBudget;
 };
 
 }  // namespace povrayfc

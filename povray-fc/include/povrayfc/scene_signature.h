@@ -1,14 +1,20 @@
 // What one frame's parse says about the scene, for change detection between frames.
 //
-// The parser hashes what it reads: every token and every evaluated value of a
-// top-level item (so `clock`, `rand()`, macros and includes are all covered), and
-// each declared identifier carries a content hash that is mixed in wherever the
-// identifier is used (a texture declared once with clock and used by name).
-// Objects are matched between frames as a multiset of hashes: an object whose hash
-// is gone changed (its old bounds are dirty), a new hash appeared (its new bounds
-// are dirty). Everything that is not a plain object (camera, lights, global
-// settings, atmosphere, fog, background, sky, defaults) goes into separate hashes;
+// The parser hashes what it reads: every token and every evaluated value (so `clock`,
+// `rand()`, macros and includes are all covered), and each declared identifier carries a
+// content hash that is mixed in wherever the identifier is used (a texture declared once
+// with clock and used by name). Everything that is not a plain object (camera, lights,
+// global settings, atmosphere, fog, background, sky, defaults) goes into separate hashes;
 // when they change, fc renders the whole frame.
+//
+// Objects are described twice. As top-level items in parse order (their hashes decide
+// POV-Ray's bounding tree, and with it ties between coincident surfaces: tie_watch.h). And
+// as units: the parts a ray can end on, each with a hash of everything it depends on (its
+// own tokens and those of every CSG around it) and a hash of its geometry alone. A unit is
+// a leaf object reached through unions only (a text's glyph counts as a leaf), or a whole
+// merge, intersection or difference (whose surfaces depend on all of its parts). The
+// parser writes each unit's index into the objects a ray can report as hit, so recorded
+// rays know what they ended on (see "Units" in povray-fc/README.md).
 #ifndef POVRAYFC_SCENE_SIGNATURE_H
 #define POVRAYFC_SCENE_SIGNATURE_H
 
@@ -20,32 +26,34 @@
 
 namespace povrayfc {
 
-// A direct child of a CSG item (union, merge, intersection, difference, light_group),
-// hashed on its own.
-struct ChildSignature {
-    std::uint64_t hash = 0;
-    Box bounds;              // world-space; ignored when infinite
-    bool infinite = false;
-    bool isLight = false;    // a light source of a light_group
-    bool hasCapsule = false;
-    Capsule capsule;
-};
+// What the parser writes into an object for the ray recording hooks: the index of its
+// unit in SceneSignature::units, or kUnitUnknown when none was found for it (a ray that
+// ends on it then depends on every change). kUnitNothing stands for "the ray hit nothing".
+constexpr std::uint32_t kUnitUnknown = 0xfffffffeu;
+constexpr std::uint32_t kUnitNothing = 0xffffffffu;
 
-// One top-level object of the scene (after Post_Process, with its final bounds).
+// One top-level object item (after Post_Process, with its final bounds).
 struct ObjectSignature {
     std::uint64_t hash = 0;
     Box bounds;              // world-space bounding box; ignored when infinite
     bool infinite = false;   // unbounded (plane, poly with no bounds...) or huge
-    // A tighter hull than `bounds` for spheres, cylinders and cones: only voxels it may
-    // meet are dirty when the object changes (a slanted string's box is mostly empty).
+};
+
+// One part of the scene a ray can end on (see above).
+struct UnitSignature {
+    std::uint64_t hash = 0;      // everything the unit's surfaces and appearance depend on
+    std::uint64_t geometry = 0;  // the same without appearance (texture, interior...)
+    Box bounds;                  // world-space; ignored when infinite
+    bool infinite = false;       // unbounded, inverted, or huge
+    // A tighter hull than `bounds` for spheres, cylinders and cones.
     bool hasCapsule = false;
     Capsule capsule;
-    // For CSG items: the hash of everything but the children's own tokens, and the
-    // children. Two frames' objects with the same shell differ only where their changed
-    // children are (a CSG's surface inside a child's box depends on that child alone, or
-    // on children whose boxes it overlaps).
-    std::uint64_t shell = 0;
-    std::vector<ChildSignature> children;
+    // The camera is inside it (or, with focal blur, may be): camera rays start with it as
+    // their medium, so a change of it reaches every camera ray.
+    bool containsCamera = false;
+    // Every surface of it is opaque to shadow tests whatever its texture (POV-Ray's
+    // OPAQUE_FLAG on each object it is made of).
+    bool opaque = false;
 };
 
 struct SceneSignature {
@@ -53,7 +61,8 @@ struct SceneSignature {
     std::uint64_t lights = 0;        // every light source outside light groups
     std::uint64_t global = 0;        // global_settings, atmosphere/media, fog, rainbow,
                                      // sky_sphere, background, default{}, photons, radiosity
-    std::vector<ObjectSignature> objects;
+    std::vector<ObjectSignature> objects;  // top-level object items, in parse order
+    std::vector<UnitSignature> units;      // by the index the parser wrote into the objects
     // Effects fc cannot keep exact that the parser saw (e.g. "crand",
     // "isosurface evaluate", "media method 1", "media jitter", "subsurface"):
     // a frame that uses any renders in full and the log names the first.

@@ -9,14 +9,25 @@
 
 namespace povrayfc {
 
-// The points origin + s * direction, s in [0, length]. Floats, not doubles: a frame keeps
-// millions of these (28 bytes each), and every test against them widens the target by
-// the rounding this costs (see SegmentMargin), so single precision loses no exactness,
-// only a hair of tightness.
+// The points origin + s * direction, s in [0, length], and the unit the ray ended on.
+// Floats, not doubles: a frame keeps millions of these (32 bytes each), and every test
+// against them widens the target by the rounding this costs (see SegmentMargin), so single
+// precision loses no exactness, only a hair of tightness.
 struct Segment {
+    static constexpr std::uint32_t kNoUnit = 0xffffffffu;  // it ended on nothing (sky, light)
+    // With a unit id: a shadow test that an opaque surface of the unit answered (dark,
+    // whatever its colour: only the unit's shape and its staying opaque matter).
+    static constexpr std::uint32_t kOpaqueBlocker = 0x80000000u;
+
     float origin[3];
     float direction[3];
     float length;  // in units of direction; +infinity for a ray that hit nothing
+    // The id (unit_ids.h) of what the ray ended on: the surface it hit, the transparent
+    // object a shadow ray passed there, or the blocker of a shadow test (kOpaqueBlocker
+    // added when the blocker was opaque); kNoUnit when nothing.
+    std::uint32_t unit;
+
+    std::uint32_t UnitId() const { return unit & ~kOpaqueBlocker; }
 };
 
 // The segment of a traced ray, origin + t * direction for t in [0, tmax], in single
@@ -44,6 +55,7 @@ inline bool MakeSegment(const double origin[3], const double direction[3], doubl
     // Never shorter than the traced segment: tmax * (1 + 2^-22) rounds to a float above
     // tmax (rounding to nearest moves it by at most 2^-24 of itself).
     out.length = tmax < 1e-30 ? 1e-30f : float(tmax * (1.0 + 0x1p-22));
+    out.unit = Segment::kNoUnit;
     return true;
 }
 

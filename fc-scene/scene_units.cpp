@@ -1,0 +1,205 @@
+// fc-scene: units, glyphs, the camera's units and transparency, read off POV-Ray's objects
+// (scene_units.h).
+
+// frame.h must always be the first POV file included (pulls in platform config)
+#include "backend/frame.h"
+
+#include <cstdint>
+#include <cstring>
+#include "backend/scene/camera.h"
+#include "backend/scene/objects.h"
+#include "backend/shape/cones.h"
+#include "backend/shape/csg.h"
+#include "backend/shape/spheres.h"
+
+#include "povrayfc/parse_hasher.h"
+#include "povrayfc/shape_hulls.h"
+
+#include "scene_units.h"
+
+// this must be the last file included
+#include "base/povdebug.h"
+
+namespace povrayfc
+{
+namespace scene
+{
+
+using pov::CompoundObject;
+using pov::CSG;
+using pov::CSGMerge;
+using pov::CSGUnion;
+using pov::LightSource;
+
+namespace
+{
+
+// An object's own hash (or its geometry's), as the parser's object scope left it. An
+// object no parse hook hashed (0: none made it) counts as changed in every frame.
+std::uint64_t OwnHash(Object object, bool geometry)
+{
+    if (object->fcHash == 0)
+        return UniqueHashValue();
+    return geometry ? object->fcGeometry : object->fcHash;
+}
+
+// An object and everything below it, in order (a CSG's surfaces depend on all its parts,
+// and their order decides its own ties).
+std::uint64_t WholeHash(Object object, bool geometry)
+{
+    std::uint64_t hash = OwnHash(object, geometry);
+    const CompoundObject *compound = dynamic_cast<const CompoundObject *>(object);
+    if (compound != nullptr)
+        for (Object child : compound->children)
+            hash = CombineHashes(hash, WholeHash(child, geometry));
+    return hash;
+}
+
+// Every object a ray can report as hit below `object` (Intersection::Object) is the unit.
+void SetUnit(Object object, std::uint32_t unit)
+{
+    object->fcUnit = unit;
+    const CompoundObject *compound = dynamic_cast<const CompoundObject *>(object);
+    if (compound != nullptr)
+        for (Object child : compound->children)
+            SetUnit(child, unit);
+}
+
+// Every object a ray can report as hit below `object` is opaque to shadow tests whatever
+// its texture (ComputeShadowColour looks no further than OPAQUE_FLAG).
+bool AllOpaque(Object object)
+{
+    const CompoundObject *compound = dynamic_cast<const CompoundObject *>(object);
+    if (compound == nullptr || compound->children.empty())
+        return Test_Flag(object, OPAQUE_FLAG);
+    for (Object child : compound->children)
+        if (!AllOpaque(child))
+            return false;
+    return true;
+}
+
+// A tighter hull than the box for the shapes whose boxes are loosest when slanted.
+bool CapsuleOf(Object object, Capsule &capsule)
+{
+    const pov::Cone *cone = dynamic_cast<const pov::Cone *>(object);
+    if (cone != nullptr && cone->Trans != nullptr)
+    {
+        capsule = CapsuleOfUnitCylinder(cone->Trans->matrix);
+        return true;
+    }
+    const pov::Sphere *sphere = dynamic_cast<const pov::Sphere *>(object);
+    if (sphere != nullptr)
+    {
+        // a sphere gets a Trans exactly when it becomes an ellipsoid (Sphere::Scale, Transform)
+        capsule = CapsuleOfSphere(sphere->Center, sphere->Radius, (sphere->Trans != nullptr) ? &sphere->Trans->matrix : nullptr);
+        return true;
+    }
+    return false;
+}
+
+bool IsUnion(Object object)
+{
+    return dynamic_cast<CSGUnion *>(object) != nullptr && dynamic_cast<CSGMerge *>(object) == nullptr;
+}
+
+void AddUnits(Object object, std::uint64_t path, std::uint64_t pathGeometry, SignatureBuilder &signature,
+              std::vector<Object> &unitObjects)
+{
+    const std::uint64_t hash = CombineHashes(path, OwnHash(object, false));
+    const std::uint64_t geometry = CombineHashes(pathGeometry, OwnHash(object, true));
+    if (IsUnion(object) || dynamic_cast<LightSource *>(object) != nullptr)
+    {
+        // A light among a union's parts (a light_group's lights light its other parts)
+        // counts for every part.
+        std::uint64_t lit = hash;
+        const std::vector<Object> &children = static_cast<CompoundObject *>(object)->children;
+        for (Object child : children)
+            if (dynamic_cast<LightSource *>(child) != nullptr)
+                lit = CombineHashes(lit, WholeHash(child, false));
+        for (Object child : children)
+            AddUnits(child, lit, geometry, signature, unitObjects);
+        return;
+    }
+    const bool csg = dynamic_cast<CSG *>(object) != nullptr;
+    const std::uint64_t unitHash = csg ? CombineHashes(path, WholeHash(object, false)) : hash;
+    const std::uint64_t unitGeometry = csg ? CombineHashes(pathGeometry, WholeHash(object, true)) : geometry;
+    const std::uint32_t unit = signature.AddUnit(unitHash, unitGeometry, object->BBox.Lower_Left,
+                                                 object->BBox.Lengths, Unbounded(object));
+    Capsule capsule;
+    if (!csg && CapsuleOf(object, capsule))
+        signature.SetUnitCapsule(unit, capsule);
+    if (AllOpaque(object))
+        signature.SetUnitOpaque(unit);
+    SetUnit(object, unit);
+    if (unit != kUnitUnknown)
+        unitObjects.push_back(object);
+}
+
+}  // namespace
+
+void AddUnits(Object item, SignatureBuilder &signature, std::vector<Object> &unitObjects)
+{
+    AddUnits(item, 0, 0, signature, unitObjects);
+}
+
+bool Unbounded(Object object)
+{
+    if (Test_Flag(object, INFINITE_FLAG) || Test_Flag(object, INVERTED_FLAG))
+        return true;
+    if (dynamic_cast<CSGUnion *>(object) != nullptr)
+        for (Object child : static_cast<CSG *>(object)->children)
+            if (Unbounded(child))
+                return true;
+    return false;
+}
+
+void HashGlyphs(Object text, const unsigned short *string)
+{
+    std::vector<Object> &glyphs = static_cast<CSG *>(text)->children;
+    bool ended = false;
+    for (std::size_t i = 0; i < glyphs.size(); ++i)
+    {
+        ended = ended || string[i] == 0;
+        std::uint64_t hash = CombineHashes(0x676c797068ULL, ended ? 0 : string[i]);
+        if (glyphs[i]->Trans != nullptr)
+            for (int row = 0; row < 4; ++row)
+                for (int column = 0; column < 4; ++column)
+                {
+                    std::uint64_t bits;
+                    std::memcpy(&bits, &glyphs[i]->Trans->matrix[row][column], sizeof bits);
+                    hash = CombineHashes(hash, bits);
+                }
+        glyphs[i]->fcHash = glyphs[i]->fcGeometry = hash;
+    }
+}
+
+void MarkUnitsAroundCamera(const pov::Camera &camera, const std::vector<Object> &unitObjects,
+                           SignatureBuilder &signature, pov::SceneThreadData *thread)
+{
+    const double reach = camera.Aperture > 0.0 ? camera.Aperture : 0.0;
+    const Vec3 location{camera.Location[pov::X], camera.Location[pov::Y], camera.Location[pov::Z]};
+    for (std::size_t unit = 0; unit < unitObjects.size(); ++unit)
+    {
+        const UnitSignature &u = signature.Unit(std::uint32_t(unit));
+        // The box first: the inside test of a mesh or an isosurface is no small thing.
+        if (!u.infinite && !u.bounds.Near(location, reach))
+            continue;
+        if (reach > 0.0 || pov::Inside_Object(camera.Location, unitObjects[unit], thread))
+            signature.SetUnitContainsCamera(std::uint32_t(unit));
+    }
+}
+
+bool LetsLightThrough(const std::vector<Object> &objects)
+{
+    for (Object object : objects)
+    {
+        const CompoundObject *compound = dynamic_cast<const CompoundObject *>(object);
+        const bool throughParts = compound != nullptr && !compound->children.empty();
+        if (throughParts ? LetsLightThrough(compound->children) : !Test_Flag(object, OPAQUE_FLAG))
+            return true;
+    }
+    return false;
+}
+
+}  // namespace scene
+}  // namespace povrayfc
