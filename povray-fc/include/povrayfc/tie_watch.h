@@ -43,13 +43,24 @@ class TieWatch {
   public:
     // `best`: the search's best depth, read when the watch is destroyed (the search's
     // result by then; its starting value bounds the search, e.g. a shadow ray's light).
-    TieWatch(const double direction[3], const double &best)
-        : recorder_(detail::tlsRecorder), best_(best), outer_(detail::tlsTieWatch) {
+    // Not recording (every ray with fc off, and most without a sample open), the watch
+    // costs one thread-local load here and a test when it goes: nothing else is set.
+    TieWatch(const double direction[3], const double &best) : recorder_(detail::tlsRecorder), best_(best) {
         if (!recorder_) return;
+        outer_ = detail::tlsTieWatch;
         direction_[0] = direction[0];
         direction_[1] = direction[1];
         direction_[2] = direction[2];
+        nearest_ = second_ = skippedReach_ = std::numeric_limits<double>::infinity();
+        // The thread's innermost watch until the destructor restores the outer one.
+#if defined(__GNUC__) && !defined(__clang__) && __GNUC__ >= 12
+#pragma GCC diagnostic push
+#pragma GCC diagnostic ignored "-Wdangling-pointer"
+#endif
         detail::tlsTieWatch = this;
+#if defined(__GNUC__) && !defined(__clang__) && __GNUC__ >= 12
+#pragma GCC diagnostic pop
+#endif
     }
     ~TieWatch() {
         if (!recorder_) return;
@@ -101,11 +112,10 @@ class TieWatch {
   private:
     SampleRecorder *recorder_;
     const double &best_;
+    // Set only while recording (see the constructor).
     TieWatch *outer_;
-    double direction_[3] = {0, 0, 0};
-    double nearest_ = std::numeric_limits<double>::infinity();
-    double second_ = std::numeric_limits<double>::infinity();
-    double skippedReach_ = std::numeric_limits<double>::infinity();
+    double direction_[3];
+    double nearest_, second_, skippedReach_;
 };
 
 // From the hooks inside a search (see above): no-ops unless a watch is open on this thread.
