@@ -166,3 +166,25 @@ def test_isosurface_with_too_low_max_gradient_does_not_depend_on_the_pixel_trace
     render_animation(scene, tmp_path / "bs8", False, 1, ["+BS8"])
     for n in range(1, FRAMES + 1):
         assert_same_pixels(tmp_path / "bs32" / f"f{n}.tga", tmp_path / "bs8" / f"f{n}.tga")
+
+
+def test_store_past_its_memory_budget_traces_those_blocks_in_full(tmp_path):
+    # A 1 MiB budget holds some of a 320x240 render's blocks, not all: the others are
+    # traced in full every frame, the frames stay exact, and the store keeps to the budget.
+    scene = FC_SCENES / "pendulum.pov"
+    budget = 1 << 20
+    size = ["+W320", "+H240"]
+    full = render_animation(scene, tmp_path / "off", False, 2, size)
+    free = render_animation(scene, tmp_path / "free", True, 2, size)
+    bounded = render_animation(scene, tmp_path / "bounded", True, 2, [*size, "Frame_Coherence_Memory=1"])
+    for n in range(1, FRAMES + 1):
+        assert_same_pixels(tmp_path / "off" / f"f{n}.tga", tmp_path / "bounded" / f"f{n}.tga")
+    assert all(r["over_budget_blocks"] == "0" for r in free)
+    assert int(free[0]["store_bytes"]) > 2 * budget
+    for row in bounded:
+        assert int(row["over_budget_blocks"]) > 0
+        assert int(row["store_bytes"]) <= budget + 64 * 1024
+    # The blocks within the budget are still reused; the others cost re-traced pixels.
+    assert sum(int(r["reused"]) for r in bounded[1:]) > 0
+    assert sum(int(r["traced"]) for r in bounded[1:]) > sum(int(r["traced"]) for r in free[1:])
+    assert int(full[1]["traced"]) > int(bounded[1]["traced"])
