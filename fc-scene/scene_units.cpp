@@ -97,12 +97,36 @@ bool CapsuleOf(Object object, Capsule &capsule)
     return false;
 }
 
+// Nothing about the object keeps a shadow test that meets it from going dark there: it casts
+// shadows, is opaque (so is every union around it: the shadow loop asks the outermost), and
+// no clipped_by or bounded_by cuts it.
+bool DarkensShadows(Object object)
+{
+    return Test_Flag(object, OPAQUE_FLAG) && !Test_Flag(object, NO_SHADOW_FLAG) && object->Clip.empty() &&
+           object->Bound.empty();
+}
+
+// A plain sphere that darkens every shadow test crossing it (shadow_blockers.h): not an
+// ellipsoid (Sphere::Transform and an uneven Scale give it a Trans, and only then intersect
+// it as one), not inverted.
+bool BlockingBall(Object object, Ball &ball)
+{
+    const pov::Sphere *sphere = dynamic_cast<const pov::Sphere *>(object);
+    if (sphere == nullptr || sphere->Trans != nullptr || Test_Flag(object, INVERTED_FLAG) ||
+        !DarkensShadows(object))
+        return false;
+    ball.centre = Vec3{sphere->Center[pov::X], sphere->Center[pov::Y], sphere->Center[pov::Z]};
+    ball.radius = sphere->Radius;
+    return true;
+}
+
 bool IsUnion(Object object)
 {
     return dynamic_cast<CSGUnion *>(object) != nullptr && dynamic_cast<CSGMerge *>(object) == nullptr;
 }
 
-void AddUnits(Object object, std::uint64_t path, std::uint64_t pathGeometry, SignatureBuilder &signature,
+// `darkening`: every union around the object darkens shadows (DarkensShadows).
+void AddUnits(Object object, std::uint64_t path, std::uint64_t pathGeometry, bool darkening, SignatureBuilder &signature,
               std::vector<Object> &unitObjects)
 {
     const std::uint64_t hash = CombineHashes(path, OwnHash(object, false));
@@ -116,8 +140,9 @@ void AddUnits(Object object, std::uint64_t path, std::uint64_t pathGeometry, Sig
         for (Object child : children)
             if (dynamic_cast<LightSource *>(child) != nullptr)
                 lit = CombineHashes(lit, WholeHash(child, false));
+        const bool childrenDarken = darkening && DarkensShadows(object);
         for (Object child : children)
-            AddUnits(child, lit, geometry, signature, unitObjects);
+            AddUnits(child, lit, geometry, childrenDarken, signature, unitObjects);
         return;
     }
     const bool csg = dynamic_cast<CSG *>(object) != nullptr;
@@ -130,6 +155,9 @@ void AddUnits(Object object, std::uint64_t path, std::uint64_t pathGeometry, Sig
         signature.SetUnitCapsule(unit, capsule);
     if (AllOpaque(object))
         signature.SetUnitOpaque(unit);
+    Ball ball;
+    if (darkening && BlockingBall(object, ball))
+        signature.SetUnitBall(unit, ball.centre, ball.radius);
     SetUnit(object, unit);
     if (unit != kUnitUnknown)
         unitObjects.push_back(object);
@@ -139,7 +167,7 @@ void AddUnits(Object object, std::uint64_t path, std::uint64_t pathGeometry, Sig
 
 void AddUnits(Object item, SignatureBuilder &signature, std::vector<Object> &unitObjects)
 {
-    AddUnits(item, 0, 0, signature, unitObjects);
+    AddUnits(item, 0, 0, true, signature, unitObjects);
 }
 
 bool Unbounded(Object object)

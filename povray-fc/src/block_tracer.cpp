@@ -3,6 +3,7 @@
 
 #include "povrayfc/block_hulls.h"
 #include "povrayfc/group_fans.h"
+#include "povrayfc/shadow_blockers.h"
 
 #include <algorithm>
 #include <cmath>
@@ -38,6 +39,8 @@ bool SampleIsDirty(const StoredSample &s, const BlockRecord &record, const Chang
     const Segment *segment = record.segments.data() + s.firstSegment;
     const std::uint8_t *fanOf = record.fanOf.data() + s.firstSegment;
     for (std::uint32_t i = 0; i < s.segmentCount; ++i) {
+        // An opaque blocker's test holds whatever else appears on its way (EndsOnChangedUnit).
+        if (!segment[i].HullTested()) continue;
         const BlockHulls::Mask mask = reach.MaskOf(segment[i], fanOf[i]);
         if (mask == 0) {
             untested |= BlockHulls::ClassBit(segment[i], fanOf[i]);
@@ -56,15 +59,25 @@ bool SampleIsDirty(const StoredSample &s, const BlockRecord &record, const Chang
 }
 
 // Whether one of the sample's segments ended on a unit that changed or vanished this frame.
-// (FramePlan::changedUnits by id: a shadow test an opaque surface answered holds while
-// that unit keeps its shape and stays opaque.)
-bool EndsOnChangedUnit(const StoredSample &s, const BlockRecord &record, const std::vector<std::uint8_t> &changed) {
-    const Segment *segment = record.segments.data() + s.firstSegment;
+// (FramePlan::changedUnits by id. A shadow test an opaque surface answered holds while
+// that unit keeps its shape and stays opaque, or while one of the frame's new opaque
+// balls crosses its way: shadow_blockers.h. The test then names that ball's unit, as if
+// traced anew: the changed unit's id may go to another unit from the next frame on.)
+bool EndsOnChangedUnit(const StoredSample &s, BlockRecord &record, const FramePlan &plan) {
+    const std::vector<std::uint8_t> &changed = *plan.changedUnits;
+    Segment *segment = record.segments.data() + s.firstSegment;
     for (std::uint32_t i = 0; i < s.segmentCount; ++i) {
         if (segment[i].unit == Segment::kNoUnit) continue;
         const std::uint32_t unit = segment[i].UnitId();
         if (unit >= changed.size() || changed[unit] == FramePlan::kUnitKept) continue;
-        if (changed[unit] == FramePlan::kUnitChanged || !(segment[i].unit & Segment::kOpaqueBlocker)) return true;
+        if (!(segment[i].unit & Segment::kOpaqueBlocker)) return true;
+        if (changed[unit] == FramePlan::kUnitRecoloured) continue;
+        const Blocker *blocker = plan.blockers ? DarkeningBlocker(segment[i], *plan.blockers) : nullptr;
+        if (blocker == nullptr || blocker->unit >= plan.unitCount) return true;
+        const std::uint32_t id = plan.unitIds[blocker->unit];
+        if (id >= Segment::kOpaqueBlocker) return true;
+        segment[i].unit = id | Segment::kOpaqueBlocker;
+        record.unitMask |= UnitMaskBit(id);
     }
     return false;
 }
@@ -168,7 +181,7 @@ bool BlockTracer::Begin(std::uint32_t serial, int left, int top, int right, int 
         for (std::size_t i = 0; i < n; ++i) {
             StoredSample &s = old_->samples[i];
             bool dirty = s.segmentCount == StoredSample::kEverything || (orderMatters && s.orderSensitive) ||
-                         (unitsChanged && EndsOnChangedUnit(s, *old_, *plan.changedUnits));
+                         (unitsChanged && EndsOnChangedUnit(s, *old_, plan));
             if (!dirty && groupReaches_[s.group]) {
                 // Clean by what it kept, while the changes stay near where they were then and
                 // reach no class of its segments it did not test; else tested, keeping what

@@ -120,6 +120,8 @@ FrameChange CompareFrames(const FrameSetup &lastSetup, const SceneSignature &las
             return change;
         }
         change.hulls.push_back(UnitHull(now.units[i]));
+        if (now.units[i].hasBall && change.blockers.size() < FrameChange::kMaxBlockers)
+            change.blockers.push_back(Blocker{now.units[i].ball, i});
     }
     return change;
 }

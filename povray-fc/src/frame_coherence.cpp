@@ -171,6 +171,8 @@ void FrameCoherence::PlanFrame(const FrameSetup &setup, const SceneSignature &si
         current_.changedUnits = changedIds_.size();
         changes_ = ChangeIndex(std::move(change.hulls), setup.gridResolution);
         plan_.changes = &changes_;
+        blockers_ = std::move(change.blockers);
+        plan_.blockers = &blockers_;
         plan_.orderChanged = change.orderChanged;
         current_.changedHulls = changes_.HullCount();
         if (!changes_.Empty() && changes_.Bounds().IsFinite()) plan_.changeStamp = drift_.Begin(changes_.Bounds());

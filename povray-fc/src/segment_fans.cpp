@@ -139,6 +139,7 @@ SegmentFan UnboundedCone(const Segment *segments, const std::vector<std::uint32_
 }
 
 // A loose segment joins the loose box, or the unbounded cone.
+// (An opaque blocker's shadow test is never tested against a hull: block_tracer.cpp.)
 void AddLoose(BlockFans &fans, const Segment &s) {
     if (!InLooseBox(s)) {
         GrowUnbounded(fans.unbounded, s);
@@ -192,7 +193,8 @@ BlockFans BuildFans(const Segment *segments, std::vector<std::uint8_t> &fanOf, c
 BlockFans BuildFansOf(const Segment *segments, const std::uint8_t *fanOf, const FanApexes &apexes,
                       const std::vector<std::uint32_t> &indices) {
     std::vector<std::vector<std::uint32_t>> members(std::size_t(apexes.count) + 1);
-    for (std::uint32_t i : indices) members[std::min<std::size_t>(fanOf[i], std::size_t(apexes.count))].push_back(i);
+    for (std::uint32_t i : indices)
+        if (segments[i].HullTested()) members[std::min<std::size_t>(fanOf[i], std::size_t(apexes.count))].push_back(i);
     return FansOfMembers(segments, apexes, members);
 }
 
@@ -262,6 +264,7 @@ BlockFans GrowFans(const BlockFans &old, const Segment *segments, const std::uin
     std::vector<std::vector<std::uint32_t>> fresh(fans.fans.size());
     for (const auto &range : added)
         for (std::size_t i = range.first; i < range.first + range.second; ++i) {
+            if (!segments[i].HullTested()) continue;
             const std::uint8_t f = fanOf[i];
             if (f < fans.fans.size())
                 fresh[f].push_back(std::uint32_t(i));

@@ -90,6 +90,14 @@ void SignatureBuilder::SetUnitOpaque(std::uint32_t unit) {
     if (unit < signature_.units.size()) signature_.units[unit].opaque = true;
 }
 
+void SignatureBuilder::SetUnitBall(std::uint32_t unit, const Vec3 &centre, double radius) {
+    if (unit >= signature_.units.size() || !centre.IsFinite() || !(radius > 0.0) || !std::isfinite(radius)) return;
+    UnitSignature &u = signature_.units[unit];
+    if (u.infinite) return;
+    u.hasBall = true;
+    u.ball = Ball{centre, radius};
+}
+
 void SignatureBuilder::EndItem(ParseItemClass itemClass, std::uint64_t hash, bool addedLights,
                                unsigned effects) {
     if (itemClass != ParseItemClass::kDiscard) NoteEffects(effects);

@@ -191,5 +191,17 @@ TEST(ChangeDetection, ARecolouredUnitKeepsItsShadowsOnlyWhileItStaysOpaque) {
     EXPECT_EQ(moved.shadowsKept, std::vector<std::uint8_t>{0});
 }
 
+TEST(ChangeDetection, TheBallsAmongTheNewShapesAreTheFramesBlockers) {
+    UnitSignature ball = Unit(10, 100, 0), moved = Unit(11, 110, 4), plain = Unit(12, 120, 8);
+    ball.hasBall = moved.hasBall = true;
+    moved.ball = Ball{Vec3{4, 0, 0}, 1};
+    const FrameChange change = CompareFrames(Frame(), Scene({ball, plain}), Frame(), Scene({moved, Unit(13, 130, 9)}), false);
+    ASSERT_EQ(change.blockers.size(), 1u);
+    EXPECT_EQ(change.blockers[0].ball.centre.x, 4.0);
+    EXPECT_EQ(change.blockers[0].unit, 0u);
+    // A ball that stayed where it was is no new shape.
+    EXPECT_TRUE(CompareFrames(Frame(), Scene({ball}), Frame(), Scene({ball}), false).blockers.empty());
+}
+
 }  // namespace
 }  // namespace povrayfc

@@ -824,6 +824,30 @@ SceneSignature BlockerScene(std::uint64_t blockerHash, bool blockerOpaque) {
     return s;
 }
 
+// Unit 0 an opaque ball (centre x, y, z = 5, radius 5) on the shadow tests' way up from
+// z = 5, or no ball at all.
+SceneSignature BallScene(std::uint64_t hash, double x, double y, bool ball) {
+    SceneSignature s = UnitsScene({1000 + hash, 2}, {2000 + hash, 12}, {0, 100});
+    s.units[0].bounds = Box{Vec3{x - 5, y - 5, 0}, Vec3{x + 5, y + 5, 10}};
+    s.units[0].opaque = ball;
+    s.units[0].hasBall = ball;
+    s.units[0].ball = Ball{Vec3{x, y, 5}, 5};
+    return s;
+}
+
+TEST_F(FrameCoherenceRun, AMovedOpaqueBallKeepsTheShadowsItStillCasts) {
+    // Invariant: a shadow test an opaque surface darkened stays dark while an opaque ball of
+    // the new frame crosses its whole way; the shadow tests run up from y = 0..3 over 50.
+    EXPECT_EQ(RenderShadowedBlock(1, BallScene(1, 1.5, 20, true), true), 16);
+    EXPECT_EQ(RenderShadowedBlock(2, BallScene(2, 1.5, 23, true), true), 0);   // moved along the way
+    EXPECT_EQ(RenderShadowedBlock(3, BallScene(3, 4.0, 23, true), true), 0);   // and aside, still across
+    EXPECT_EQ(RenderShadowedBlock(4, BallScene(4, 9.0, 23, true), true), 16);  // off their way
+    EXPECT_EQ(RenderShadowedBlock(5, BallScene(5, 1.5, 20, true), true), 0);
+    EXPECT_EQ(RenderShadowedBlock(6, BallScene(6, 1.5, 52, true), true), 16);  // past the light
+    EXPECT_EQ(RenderShadowedBlock(7, BallScene(7, 1.5, 20, true), true), 0);
+    EXPECT_EQ(RenderShadowedBlock(8, BallScene(8, 1.5, 22, false), true), 16); // no longer opaque
+}
+
 TEST_F(FrameCoherenceRun, ARecolouredOpaqueBlockerKeepsItsShadowsAndAGlassPaneDoesNot) {
     // Invariant: a shadow test an opaque surface answered is dark whatever its colour; one
     // that passed a transparent surface carries its colour.

@@ -11,6 +11,7 @@
 #include "povrayfc/change_index.h"
 #include "povrayfc/dirty_mask.h"
 #include "povrayfc/sample_store.h"
+#include "povrayfc/shadow_blockers.h"
 
 namespace povrayfc {
 
@@ -53,6 +54,9 @@ struct FramePlan {
     static constexpr std::uint8_t kUnitChanged = 2;
     const std::vector<std::uint8_t> *changedUnits = nullptr;
     std::uint64_t changedUnitMask = 0;
+    // The opaque balls among this frame's new shapes: a shadow test a changed unit's opaque
+    // surface darkened holds while one of them crosses its way (shadow_blockers.h).
+    const std::vector<Blocker> *blockers = nullptr;
     // The ordered list of the scene's objects differs from the last frame's (something
     // changed, appeared, vanished or moved in it): the bounding tree may have another
     // shape, so every order-sensitive sample is dirty (tie_watch.h).

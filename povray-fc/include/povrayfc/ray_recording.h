@@ -132,6 +132,12 @@ class SampleRecorder {
         segments_->push_back(s);
         fanOf_->push_back(apexes_->AimFan(aim, deep_));
     }
+    // Drops the segments recorded after the sample's first `count` (a shadow test's pieces
+    // that its opaque blocker made moot).
+    void KeepFirst(std::size_t count) {
+        segments_->resize(first_ + count);
+        fanOf_->resize(first_ + count);
+    }
     void MarkEverything() { everything_ = true; }
     // One of the sample's searches for a nearest intersection ended in a tie that the order
     // of the scene's objects decided (tie_watch.h).
@@ -181,9 +187,15 @@ inline void RecordRaySegment(const double origin[3], const double direction[3], 
 
 // A shadow test's segments, in pieces: up to each transparent object the test passes
 // (PassedAt, which shaped the light's colour there), and the last one to the light or to
-// a fully opaque blocker (BlockedAt; nothing beyond it can change the answer), recorded
-// when the test returns. POV-Ray's shadow loop moves its ray's origin past each transparent
-// object and shortens the remaining depth by as much: this reads both where they live.
+// the blocker that answered (BlockedAt), recorded when the test returns. POV-Ray's shadow
+// loop moves its ray's origin past each transparent object and shortens the remaining
+// depth by as much: this reads both where they live.
+//
+// An opaque blocker (OPAQUE_FLAG) darkens the light exactly, whatever lies before or
+// beyond it: the test is then one kOpaqueBlocker segment, from the loop's last origin over
+// the whole depth the test looked up to, and its pieces are dropped. It holds for as long
+// as that unit, or another opaque solid, still crosses it (shadow_blockers.h); nothing
+// else can change its answer, so no hull is tested against it.
 // Costs one thread-local test when the thread is not recording.
 class ShadowSegmentRecord {
   public:
@@ -191,6 +203,7 @@ class ShadowSegmentRecord {
     ShadowSegmentRecord(const double *origin, const double direction[3], const double &depth)
         : recorder_(detail::tlsRecorder), origin_(origin), depth_(depth) {
         if (!recorder_) return;
+        before_ = recorder_->Count();
         for (int i = 0; i < 3; ++i) {
             direction_[i] = direction[i];
             aim_[i] = origin[i] + depth * direction[i];
@@ -198,11 +211,18 @@ class ShadowSegmentRecord {
     }
     ~ShadowSegmentRecord() {
         if (!recorder_) return;
-        recorder_->AddAimed(origin_, direction_, blocked_ ? blockedAt_ : depth_, aim_, blocker_, opaque_);
+        if (!blocked_ || !opaque_ || blocker_ == kUnitNothing) {
+            recorder_->AddAimed(origin_, direction_, blocked_ ? blockedAt_ : depth_, aim_, blocker_);
+            return;
+        }
+        if (recorder_->Count() >= before_) recorder_->KeepFirst(before_);
+        recorder_->AddAimed(origin_, direction_, depth_ - projected_, aim_, blocker_, true);
     }
     ShadowSegmentRecord(const ShadowSegmentRecord &) = delete;
     ShadowSegmentRecord &operator=(const ShadowSegmentRecord &) = delete;
 
+    // A light with projected_through: the test ignores surfaces within `depth` of the light.
+    void ProjectedDepth(double depth) { projected_ = depth; }
     // The test passed a transparent object (the frame's unit `unit`) at `distance` from the
     // current origin; before the loop moves its origin there.
     void PassedAt(double distance, std::uint32_t unit) {
@@ -210,7 +230,7 @@ class ShadowSegmentRecord {
     }
     // A blocker (unit `unit`) at `distance` from the current origin answered the test;
     // `opaque`: POV-Ray took the surface there for opaque without looking at its texture
-    // (its OPAQUE_FLAG), so only the unit's shape and its staying opaque matter.
+    // (its OPAQUE_FLAG), so the light's share is nothing whatever else the way holds.
     void BlockedAt(double distance, std::uint32_t unit, bool opaque) {
         if (distance < 0.0) return;
         blocked_ = true;
@@ -224,6 +244,8 @@ class ShadowSegmentRecord {
     const double *origin_;
     const double &depth_;
     double direction_[3] = {0, 0, 0}, aim_[3] = {0, 0, 0};
+    std::size_t before_ = 0;  // the sample's segments before this test's
+    double projected_ = 0.0;
     bool blocked_ = false;
     double blockedAt_ = 0.0;
     std::uint32_t blocker_ = kUnitNothing;

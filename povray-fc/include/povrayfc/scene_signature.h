@@ -23,6 +23,7 @@
 #include <vector>
 
 #include "povrayfc/geometry.h"
+#include "povrayfc/shadow_blockers.h"
 
 namespace povrayfc {
 
@@ -54,6 +55,9 @@ struct UnitSignature {
     // Every surface of it is opaque to shadow tests whatever its texture (POV-Ray's
     // OPAQUE_FLAG on each object it is made of).
     bool opaque = false;
+    // A ball inside it that darkens every shadow test crossing it (shadow_blockers.h).
+    bool hasBall = false;
+    Ball ball;
 };
 
 struct SceneSignature {

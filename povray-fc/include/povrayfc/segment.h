@@ -16,7 +16,8 @@ namespace povrayfc {
 struct Segment {
     static constexpr std::uint32_t kNoUnit = 0xffffffffu;  // it ended on nothing (sky, light)
     // With a unit id: a shadow test that an opaque surface of the unit answered (dark,
-    // whatever its colour: only the unit's shape and its staying opaque matter).
+    // whatever its colour: only the unit's shape and its staying opaque matter). Its length
+    // is then the depth the test looked up to, not the blocker's (shadow_blockers.h).
     static constexpr std::uint32_t kOpaqueBlocker = 0x80000000u;
 
     float origin[3];
@@ -28,6 +29,9 @@ struct Segment {
     std::uint32_t unit;
 
     std::uint32_t UnitId() const { return unit & ~kOpaqueBlocker; }
+    // Whether a change's hull may alter what the ray found: not for an opaque blocker's
+    // shadow test, which only what darkens it decides (shadow_blockers.h).
+    bool HullTested() const { return unit == kNoUnit || !(unit & kOpaqueBlocker); }
 };
 
 // The segment of a traced ray, origin + t * direction for t in [0, tmax], in single

@@ -57,6 +57,8 @@ public:
     void SetUnitContainsCamera(std::uint32_t unit);
     // Every object the unit is made of is opaque (UnitSignature::opaque).
     void SetUnitOpaque(std::uint32_t unit);
+    // The unit is an opaque, shadow-casting ball (UnitSignature::ball).
+    void SetUnitBall(std::uint32_t unit, const Vec3 &centre, double radius);
     std::size_t UnitCount() const { return signature_.units.size(); }
     const UnitSignature &Unit(std::uint32_t unit) const { return signature_.units[unit]; }
 

@@ -1,0 +1,189 @@
+// Shadow blockers: a ball darkens a stored shadow test only when the traced ray, wherever
+// the stored one's rounding puts it, enters and leaves the ball within the depths the
+// shadow loop accepts.
+#include "povrayfc/shadow_blockers.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <random>
+
+#include "povrayfc/hull.h"
+#include "povrayfc/ray_recording.h"
+
+namespace povrayfc {
+namespace {
+
+Segment ShadowTest(Vec3 o, Vec3 d, double reach) {
+    const double origin[3] = {o.x, o.y, o.z}, direction[3] = {d.x, d.y, d.z};
+    Segment s;
+    EXPECT_TRUE(MakeSegment(origin, direction, reach, s));
+    s.unit = 7 | Segment::kOpaqueBlocker;
+    return s;
+}
+
+const Vec3 kUp{0, 1, 0};
+
+TEST(ShadowBlockers, ABallSquarelyOnTheWayDarkensIt) {
+    EXPECT_TRUE(BallDarkens(ShadowTest({0, 0, 0}, kUp, 50), Ball{{0.5, 20, 0}, 5}));
+    const std::vector<Blocker> two = {Blocker{Ball{{30, 20, 0}, 1}, 4}, Blocker{Ball{{0, 10, 0}, 2}, 9}};
+    const Blocker *found = DarkeningBlocker(ShadowTest({0, 0, 0}, kUp, 50), two);
+    ASSERT_NE(found, nullptr);
+    EXPECT_EQ(found->unit, 9u);
+    EXPECT_EQ(DarkeningBlocker(ShadowTest({0, 0, 0}, kUp, 50), {two[0]}), nullptr);
+    EXPECT_EQ(DarkeningBlocker(ShadowTest({0, 0, 0}, kUp, 50), {}), nullptr);
+}
+
+TEST(ShadowBlockers, AGrazedBallDoesNot) {
+    // The ray passes inside the ball by less than the rounding could move it.
+    const Segment s = ShadowTest({0, 0, 0}, kUp, 50);
+    const double m = 2.0 * SegmentMargin(s, Vec3{5, 20, 0}, 5);
+    EXPECT_FALSE(BallDarkens(s, Ball{{5 - 0.5 * m, 20, 0}, 5}));
+    EXPECT_TRUE(BallDarkens(s, Ball{{4.9, 20, 0}, 5}));
+}
+
+TEST(ShadowBlockers, TheWholeBallMustLieBetweenTheTolerances) {
+    const Segment s = ShadowTest({0, 0, 0}, kUp, 50);
+    // The origin inside the ball: the loop may see only its far side, or nothing of it.
+    EXPECT_FALSE(BallDarkens(s, Ball{{0, 1, 0}, 2}));
+    // Its near side within the tolerance of the origin.
+    EXPECT_FALSE(BallDarkens(s, Ball{{0, 2.0005, 0}, 2}));
+    EXPECT_TRUE(BallDarkens(s, Ball{{0, 2.01, 0}, 2}));
+    // Its far side past the light, or within the tolerance of it.
+    EXPECT_FALSE(BallDarkens(s, Ball{{0, 49, 0}, 2}));
+    EXPECT_FALSE(BallDarkens(s, Ball{{0, 47.9995, 0}, 2}));
+    EXPECT_TRUE(BallDarkens(s, Ball{{0, 47.99, 0}, 2}));
+    // Behind the origin.
+    EXPECT_FALSE(BallDarkens(s, Ball{{0, -10, 0}, 2}));
+}
+
+TEST(ShadowBlockers, AChordTheLoopCouldStepOverDoesNotDarken) {
+    // A loop restarting at a transparent surface just in front of the ball skips surfaces
+    // within its tolerance: a chord of less than twice that proves nothing.
+    const Segment s = ShadowTest({0, 0, 0}, kUp, 50);
+    EXPECT_FALSE(BallDarkens(s, Ball{{0, 10, 0}, 0.0015}));
+    EXPECT_TRUE(BallDarkens(s, Ball{{0, 10, 0}, 0.01}));
+}
+
+TEST(ShadowBlockers, UnplaceableInputNeverDarkens) {
+    Segment s = ShadowTest({0, 0, 0}, kUp, 50);
+    EXPECT_FALSE(BallDarkens(s, Ball{{0, 20, 0}, 0}));
+    EXPECT_FALSE(BallDarkens(s, Ball{{0, 20, 0}, std::nan("")}));
+    EXPECT_FALSE(BallDarkens(s, Ball{{std::nan(""), 20, 0}, 5}));
+    s.length = std::numeric_limits<float>::infinity();
+    EXPECT_FALSE(BallDarkens(s, Ball{{0, 20, 0}, 5}));
+}
+
+Vec3 Unit(const Vec3 &v) { return (1.0 / std::sqrt(v.x * v.x + v.y * v.y + v.z * v.z)) * v; }
+Vec3 Cross(const Vec3 &a, const Vec3 &b) { return {a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x}; }
+
+// Invariant: whenever a ball darkens a stored test, every ray the stored segment may stand
+// for (its double-precision original, moved within the rounding) enters and leaves the
+// ball at depths the shadow loop accepts, with a chord it cannot step over. The balls are
+// placed at the edges of what the rule accepts: grazing the ray, or with a side near the
+// tolerance at the origin or at the light, each by 10^-1 to 10^-13 of the scene's size.
+TEST(ShadowBlockers, EveryRayTheSegmentStandsForCrossesTheBallWithinTheTolerances) {
+    std::mt19937_64 rng(20261206);
+    std::uniform_real_distribution<double> u(-1.0, 1.0), exponent(1.0, 13.0);
+    int darkened = 0;
+    for (int trial = 0; trial < 300000; ++trial) {
+        const double scale = std::pow(10.0, 2.0 * u(rng));
+        const Vec3 o{scale * 40 * u(rng), scale * 40 * u(rng), scale * 40 * u(rng)};
+        const Vec3 d = Unit(Vec3{u(rng), u(rng), u(rng)} + Vec3{0, 0, 1e-3});
+        const Vec3 side = Unit(Cross(d, Vec3{u(rng), u(rng), u(rng)} + Vec3{1e-3, 0, 0}));
+        const double reach = scale * (1 + 30 * (u(rng) + 1));
+        const double radius = scale * 2 * (u(rng) + 1.001);
+        const double near = std::pow(10.0, -exponent(rng));
+        double off = radius * (u(rng) + 1) / 2, at = reach / 2;
+        switch (trial % 3) {
+            case 0: off = radius * (1 - near); break;                                  // grazing
+            case 1: at = kShadowTolerance + std::sqrt(radius * radius - off * off) + near * scale; break;
+            default: at = reach - kShadowTolerance - std::sqrt(radius * radius - off * off) - near * scale; break;
+        }
+        const Vec3 centre = o + at * d + off * side;
+        const double origin[3] = {o.x, o.y, o.z}, direction[3] = {d.x, d.y, d.z};
+        Segment s;
+        if (!MakeSegment(origin, direction, reach, s)) continue;
+        s.unit = Segment::kOpaqueBlocker;
+        const Ball ball{centre, radius};
+        if (!BallDarkens(s, ball)) continue;
+        ++darkened;
+        // The traced ray: the original, then moved by up to half the rounding margin (single
+        // precision moves it by a sixteenth).
+        for (int k = 0; k < 4; ++k) {
+            const double wiggle = k == 0 ? 0.0 : 0.5 * SegmentMargin(s, centre, radius);
+            const Vec3 to = o + Vec3{wiggle * u(rng), wiggle * u(rng), wiggle * u(rng)};
+            const Vec3 oc = to - centre;
+            const double b = oc.x * d.x + oc.y * d.y + oc.z * d.z;
+            const double c = oc.x * oc.x + oc.y * oc.y + oc.z * oc.z - radius * radius;
+            const double disc = b * b - c;
+            ASSERT_GT(disc, 0.0) << trial;
+            const double t1 = -b - std::sqrt(disc), t2 = -b + std::sqrt(disc);
+            ASSERT_GT(t1, kShadowTolerance) << trial;
+            ASSERT_LT(t2, reach - kShadowTolerance) << trial;
+            ASSERT_GT(t2 - t1, 2 * kShadowTolerance) << trial;
+        }
+    }
+    EXPECT_GT(darkened, 50000);  // the invariant was put to the test
+}
+
+// A shadow test an opaque blocker answered is one segment, whatever transparent objects it
+// passed on its way there: from the loop's last origin, over the depth it looked up to.
+TEST(ShadowBlockers, AnOpaqueBlockersTestIsOneSegmentOverTheWholeDepth) {
+    std::vector<Segment> segments;
+    std::vector<std::uint8_t> fanOf;
+    FanApexes apexes;
+    const std::uint32_t ids[3] = {10, 11, 12};
+    SampleRecorder recorder;
+    StartRecordingRays(recorder);
+    recorder.Begin(segments, fanOf, apexes, ids, 3);
+    double origin[3] = {0, 0, 0};
+    const double up[3] = {0, 1, 0};
+    RecordRaySegment(origin, up, 3.0, 0);
+    {
+        double depth = 50.0;
+        ShadowSegmentRecord shadow(origin, up, depth);
+        shadow.ProjectedDepth(4.0);
+        shadow.PassedAt(10.0, 1);  // the loop moves on past a pane of glass
+        origin[1] = 10.0;
+        depth -= 10.0;
+        shadow.BlockedAt(5.0, 2, true);
+    }
+    StopRecordingRays();
+    ASSERT_EQ(recorder.Count(), 2u);
+    const Segment &blocked = segments[1];
+    EXPECT_EQ(blocked.unit, 12u | Segment::kOpaqueBlocker);
+    EXPECT_FALSE(blocked.HullTested());
+    EXPECT_EQ(blocked.origin[1], 10.0f);
+    EXPECT_NEAR(blocked.length, 36.0, 1e-4);
+    EXPECT_EQ(fanOf.size(), segments.size());
+}
+
+TEST(ShadowBlockers, AnyOtherBlockerKeepsItsPiecesAndWhereItStopped) {
+    std::vector<Segment> segments;
+    std::vector<std::uint8_t> fanOf;
+    FanApexes apexes;
+    const std::uint32_t ids[3] = {10, 11, 12};
+    SampleRecorder recorder;
+    StartRecordingRays(recorder);
+    recorder.Begin(segments, fanOf, apexes, ids, 3);
+    double origin[3] = {0, 0, 0};
+    const double up[3] = {0, 1, 0};
+    {
+        double depth = 50.0;
+        ShadowSegmentRecord shadow(origin, up, depth);
+        shadow.PassedAt(10.0, 1);
+        origin[1] = 10.0;
+        depth -= 10.0;
+        shadow.BlockedAt(5.0, 2, false);  // dark by its texture: its colour matters
+    }
+    StopRecordingRays();
+    ASSERT_EQ(recorder.Count(), 2u);
+    EXPECT_EQ(segments[0].unit, 11u);
+    EXPECT_EQ(segments[1].unit, 12u);
+    EXPECT_TRUE(segments[1].HullTested());
+    EXPECT_NEAR(segments[1].length, 5.0, 1e-5);
+}
+
+}  // namespace
+}  // namespace povrayfc
