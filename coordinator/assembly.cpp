@@ -11,7 +11,10 @@
 #include "frame_record.h"
 #include "image_io.h"
 #include "povray.h"
-#include "util.h"
+#include "durable_write.h"
+#include "files.h"
+#include "hashes.h"
+#include "text.h"
 
 namespace fc {
 

@@ -9,7 +9,8 @@
 #include <pvm3.h>
 
 #include "protocol.h"
-#include "util.h"
+#include "clock.h"
+#include "host_info.h"
 
 namespace fc {
 

@@ -9,7 +9,8 @@
 #include <thread>
 
 #include "image_writer.h"
-#include "util.h"
+#include "debug_log.h"
+#include "host_info.h"
 
 namespace fc {
 

@@ -11,7 +11,12 @@
 #include <mutex>
 
 #include "image_writer_protocol.h"
-#include "util.h"
+#include "child_process.h"
+#include "clock.h"
+#include "debug_log.h"
+#include "files.h"
+#include "host_info.h"
+#include "text.h"
 
 namespace fc {
 

@@ -30,7 +30,13 @@
 #include "master.h"
 #include "protocol.h"
 #include "pvmutil.h"
-#include "util.h"
+#include "child_process.h"
+#include "clock.h"
+#include "debug_log.h"
+#include "files.h"
+#include "freed_memory.h"
+#include "signals.h"
+#include "text.h"
 
 namespace fc {
 

@@ -8,7 +8,7 @@
 #include <cstring>
 #include <set>
 
-#include "util.h"
+#include "text.h"
 
 namespace fc {
 

@@ -16,7 +16,13 @@
 #include "image_io.h"
 #include "master.h"
 #include "render_blocks.h"
-#include "util.h"
+#include "clock.h"
+#include "debug_log.h"
+#include "files.h"
+#include "hashes.h"
+#include "host_info.h"
+#include "temp_dirs.h"
+#include "text.h"
 
 namespace fc {
 

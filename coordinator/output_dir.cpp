@@ -12,7 +12,9 @@
 #include <cstring>
 #include <sstream>
 
-#include "util.h"
+#include "durable_write.h"
+#include "files.h"
+#include "text.h"
 
 namespace fc {
 

@@ -6,7 +6,7 @@
 #include <cstdlib>
 #include <cstring>
 
-#include "util.h"
+#include "text.h"
 
 namespace fc {
 

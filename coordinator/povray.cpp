@@ -10,7 +10,10 @@
 #include <cstring>
 #include <fstream>
 
-#include "util.h"
+#include "child_process.h"
+#include "clock.h"
+#include "files.h"
+#include "text.h"
 
 namespace fc {
 

@@ -8,7 +8,9 @@
 #include <cstdio>
 #include <cstring>
 
-#include "util.h"
+#include "clock.h"
+#include "durable_write.h"
+#include "files.h"
 
 namespace fc {
 

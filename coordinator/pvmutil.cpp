@@ -24,7 +24,11 @@
 
 #include <pvm3.h>
 
-#include "util.h"
+#include "clock.h"
+#include "files.h"
+#include "host_info.h"
+#include "temp_dirs.h"
+#include "text.h"
 
 namespace fc {
 

@@ -11,7 +11,10 @@
 #include <algorithm>
 #include <cstring>
 
+#include "debug_log.h"
+#include "files.h"
 #include "povray.h"
+#include "text.h"
 
 namespace fc {
 

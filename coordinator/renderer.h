@@ -18,7 +18,7 @@
 
 #include "frame_record.h"
 #include "protocol.h"
-#include "util.h"
+#include "child_process.h"
 
 namespace fc {
 

@@ -9,7 +9,8 @@
 #include <cstdio>
 #include <cstdlib>
 
-#include "util.h"
+#include "files.h"
+#include "text.h"
 
 namespace fc {
 

@@ -9,7 +9,9 @@
 #include <cstdlib>
 
 #include "povray.h"
-#include "util.h"
+#include "debug_log.h"
+#include "files.h"
+#include "text.h"
 
 namespace fc {
 

@@ -20,7 +20,13 @@
 #include "protocol.h"
 #include "pvmutil.h"
 #include "renderer.h"
-#include "util.h"
+#include "clock.h"
+#include "debug_log.h"
+#include "freed_memory.h"
+#include "host_info.h"
+#include "signals.h"
+#include "temp_dirs.h"
+#include "text.h"
 
 using namespace fc;
 

@@ -20,7 +20,8 @@
 #include <vector>
 
 #include "check.h"
-#include "util.h"
+#include "freed_memory.h"
+#include "hashes.h"
 
 using namespace fc;
 
