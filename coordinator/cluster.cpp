@@ -9,6 +9,7 @@
 #include <pvm3.h>
 
 #include "protocol.h"
+#include "pvm_error.h"
 #include "clock.h"
 #include "host_info.h"
 

@@ -1,6 +1,6 @@
 // cluster.h - the virtual machine fc-master renders on: its hosts and the slaves on them.
 //
-// Joins the user's running PVM virtual machine or starts a private one (pvmutil.h), watches
+// Joins the user's running PVM virtual machine or starts a private one (virtual_machine.h), watches
 // hosts (pvm_notify PvmHostDelete / PvmHostAdd) and slaves (PvmTaskExit), spawns one slave
 // per core of each host (learned from the host's first FC_HELLO), replaces slaves that exit
 // (a few times per host) and leaves out hosts whose slaves keep failing.
@@ -10,7 +10,7 @@
 #include <string>
 #include <vector>
 
-#include "pvmutil.h"
+#include "virtual_machine.h"
 
 namespace fc {
 

@@ -29,7 +29,7 @@
 #include "image_writer.h"
 #include "master.h"
 #include "protocol.h"
-#include "pvmutil.h"
+#include "pvm_error.h"
 #include "child_process.h"
 #include "clock.h"
 #include "debug_log.h"

@@ -18,7 +18,7 @@
 #include <pvm3.h>
 
 #include "protocol.h"
-#include "pvmutil.h"
+#include "pvm_error.h"
 #include "renderer.h"
 #include "clock.h"
 #include "debug_log.h"

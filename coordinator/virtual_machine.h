@@ -1,4 +1,4 @@
-// pvmutil.h - joining or starting a PVM virtual machine, and PVM error names.
+// virtual_machine.h - the PVM virtual machine fc-master renders on: joined or started.
 //
 // fc-master uses a virtual machine that is already running for this user (PVM_TMP, default
 // /tmp, holds its pvmd.<uid> file) with all its hosts. Without one it starts a private pvmd
@@ -12,9 +12,6 @@
 #include <vector>
 
 namespace fc {
-
-// "PvmNoFile (No such file)" for a PVM error code.
-std::string pvm_error(int code);
 
 class VirtualMachine {
 public:
