@@ -160,7 +160,7 @@ FORCE:
 
 test: unit-test integration-test
 
-unit-test: $(FC_BUILD)/CMakeCache.txt | deps
+unit-test: coordinator-unit-test $(FC_BUILD)/CMakeCache.txt | deps
 	cmake --build $(FC_BUILD) -j$(JOBS)
 	cd $(FC_BUILD) && ctest --output-on-failure
 

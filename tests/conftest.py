@@ -260,8 +260,7 @@ def coordinator(tmp_path):
 @pytest.fixture(scope="session")
 def coordinator_build():
     """Build fc-master and fc-slave (fast when up to date)."""
-    r = subprocess.run(["make", "-C", os.path.join(TOP, "coordinator"), "BIN=" + BIN],
-                       capture_output=True, text=True)
+    r = subprocess.run(["make", "-C", TOP, "coordinator"], capture_output=True, text=True)
     assert r.returncode == 0, "building the coordinator failed:\n" + r.stdout + r.stderr
     assert os.access(FC_MASTER, os.X_OK) and os.access(FC_SLAVE, os.X_OK)
     return BIN

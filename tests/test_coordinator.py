@@ -75,23 +75,6 @@ def slave_pids(coordinator):
 
 # --- correctness of every division scheme ---------------------------------------------------
 
-def test_schedule_unit_tests():
-    # Splitting, duplicates, re-queueing and resume planning, without PVM (schedule_test.cpp).
-    r = subprocess.run(["make", "-C", os.path.join(TOP, "coordinator"), "test-schedule"],
-                       capture_output=True, text=True)
-    assert r.returncode == 0, r.stdout + r.stderr
-    assert "all checks passed" in r.stdout
-
-
-def test_util_unit_tests():
-    # The frame hash equals its byte-by-byte definition; fc-master and fc-slave keep freed
-    # frame buffers for the next frame instead of faulting their pages in again (util_test.cpp).
-    r = subprocess.run(["make", "-C", os.path.join(TOP, "coordinator"), "test-util"],
-                       capture_output=True, text=True)
-    assert r.returncode == 0, r.stdout + r.stderr
-    assert "all checks passed" in r.stdout
-
-
 @pytest.mark.parametrize("fc", [False, True], ids=["no-fc", "fc"])
 @pytest.mark.parametrize("slaves", [1, 2, 3])
 @pytest.mark.parametrize("division", ["sequence", "frame", "hybrid"])

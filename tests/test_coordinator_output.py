@@ -532,15 +532,6 @@ def test_unsupported_output_is_refused(coordinator, tmp_path, opt, words):
 
 # --- the live preview -------------------------------------------------------------------------
 
-def test_preview_unit_tests():
-    # When the preview writes: not before its first write is due, not for a render about to
-    # end, not at the end of a render that wrote none (preview_test.cpp).
-    r = subprocess.run(["make", "-C", str(TOP / "coordinator"), "test-preview"],
-                       capture_output=True, text=True)
-    assert r.returncode == 0, r.stdout + r.stderr
-    assert "all checks passed" in r.stdout
-
-
 # Sequence division has not loaded OpenImageIO when the preview is first due: it loads then,
 # in the background, and the preview follows.
 @pytest.mark.parametrize("division", ["frame", "sequence"])
