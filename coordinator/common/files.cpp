@@ -6,6 +6,7 @@
 #include <unistd.h>
 
 #include <cerrno>
+#include <climits>
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
@@ -16,6 +17,19 @@ bool sys_fail(std::string &err, const std::string &call)
 {
     err = call + ": " + strerror(errno);
     return false;
+}
+
+std::string absolute_path(const std::string &path)
+{
+    char buf[PATH_MAX];
+    if (realpath(path.c_str(), buf))
+        return buf;
+    if (!path.empty() && path[0] == '/')
+        return path;
+    char cwd[PATH_MAX];
+    if (!getcwd(cwd, sizeof cwd))
+        return path;
+    return std::string(cwd) + "/" + path;
 }
 
 std::string dir_name(const std::string &path)

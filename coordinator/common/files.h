@@ -13,6 +13,9 @@ namespace fc {
 // Fill err with "<call>: <strerror(errno)>" and return false.
 bool sys_fail(std::string &err, const std::string &call);
 
+// path made absolute: resolved (realpath) when it exists, else joined to the working directory.
+std::string absolute_path(const std::string &path);
+
 // Directory that holds path ("." when none), and the last component of path.
 std::string dir_name(const std::string &path);
 std::string base_name(const std::string &path);

@@ -20,6 +20,7 @@ bool Cluster::start(bool force_private, const std::string &hostfile, const std::
 {
     if (!vm_.start(force_private, hostfile, pvmd_name, timeout, err))
         return false;
+    kind_ = vm_.embedded() ? "private" : "running";
     my_dtid_ = pvm_tidtohost(vm_.mytid());
     int nhost = 0, narch = 0;
     struct pvmhostinfo *hi = nullptr;

@@ -47,6 +47,8 @@ public:
                double timeout, std::string &err);
     void stop() { vm_.stop(); }
     bool embedded() const { return vm_.embedded(); }
+    // "private" (started for this run) or "running" (the user's) once started, else "none".
+    const std::string &kind() const { return kind_; }
 
     int my_host() const { return my_dtid_; }
 
@@ -81,6 +83,7 @@ public:
 
 private:
     VirtualMachine vm_;
+    std::string kind_ = "none";
     int my_dtid_ = 0;
     std::map<int, SlaveInfo> slaves_;
     std::map<int, HostInfo> hosts_;     // by pvmd tid

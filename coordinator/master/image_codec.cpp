@@ -1,5 +1,5 @@
-// image_codec.cpp - encoding and decoding frames: fc-image-writer for Targa, fc-image.so
-// (OpenImageIO, loaded on demand in the background) for the rest.
+// image_codec.cpp - OpenImageIO through fc-image.so, loaded on demand in the background (see
+// image_codec.h).
 #include "image_codec.h"
 
 #include <dlfcn.h>
@@ -11,7 +11,6 @@
 
 #include "debug_log.h"
 #include "host_info.h"
-#include "image_writer_client.h"
 
 namespace fc {
 
@@ -132,50 +131,10 @@ void wait_image_io()
         p.loader.join();
 }
 
-bool encoded_by_image_writer(const std::string &format, PixelType type)
+bool encode_with_image_io(const std::string &format, const std::string &compression, int width,
+                          int height, PixelType type, const void *pixels,
+                          std::vector<uint8_t> &out, std::string &err)
 {
-    return format == "targa" && type == PixelType::U8 && image_writer_present();
-}
-
-namespace {
-
-std::function<void(const std::string &)> &warning_handler()
-{
-    static std::function<void(const std::string &)> handler;
-    return handler;
-}
-
-void warn(const std::string &message)
-{
-    if (warning_handler())
-        warning_handler()(message);
-    else
-        fprintf(stderr, "fc-master: warning: %s\n", message.c_str());
-}
-
-} // namespace
-
-void set_image_io_warning_handler(std::function<void(const std::string &)> handler)
-{
-    warning_handler() = std::move(handler);
-}
-
-bool encode_image(const std::string &format, const std::string &compression, int width,
-                  int height, PixelType type, const void *pixels, std::vector<uint8_t> &out,
-                  std::string &err, double file_gamma)
-{
-    if (encoded_by_image_writer(format, type)) {
-        std::string why;
-        if (writer_encode_targa(width, height, compression == "rle", file_gamma,
-                                static_cast<const uint8_t *>(pixels), out, why))
-            return true;
-        // Same pixels from OpenImageIO: the frame is not lost, the run only pays its load.
-        static bool warned = false;
-        if (!warned) {
-            warned = true;
-            warn(why + "; encoding Targa frames with OpenImageIO");
-        }
-    }
     Plugin *p = nullptr;
     if (!ready(p, err))
         return false;

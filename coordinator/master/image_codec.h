@@ -1,14 +1,12 @@
-// image_codec.h - fc-master's image encoding and decoding, through OpenImageIO loaded as a plugin
-// (fc-image.so beside fc-master; see image_plugin.cpp for why), and 8-bit Targa through
-// POV-Ray's own writer in fc-image-writer (image_writer_client.h).
+// image_codec.h - fc-master's image encoding and decoding through OpenImageIO, loaded as a
+// plugin (fc-image.so beside fc-master; see image_plugin/ for why) in the background.
 //
 // Images are 3-channel, rows top first, with samples of one PixelType. Encoding goes into
-// memory: the caller writes the bytes itself (write_file_durably, durable_write.h), so that a full
-// disk is reported as such and never leaves a short file under a frame's name.
+// memory: the caller writes the bytes itself (write_file_durably, durable_write.h), so that a
+// full disk is reported as such and never leaves a short file under a frame's name.
 #pragma once
 
 #include <cstdint>
-#include <functional>
 #include <string>
 #include <vector>
 
@@ -33,25 +31,13 @@ bool image_io_ready();
 // unordered_map_concurrent.h, seen when a render failed at once).
 void wait_image_io();
 
-// Whether encode_image gives this format to fc-image-writer (POV-Ray's own Targa writer, 2 ms
-// to start; image_writer_client.h) rather than to OpenImageIO: 8-bit Targa, when the helper
-// is there.
-bool encoded_by_image_writer(const std::string &format, PixelType type);
-
-// Where the warnings below go (the message, without "fc-master: warning: "); by default to
-// stderr. fc-master sends them through its report, which first clears its progress line.
-void set_image_io_warning_handler(std::function<void(const std::string &)> handler);
-
-// Encode width x height pixels in an OpenImageIO format ("targa", "png", "openexr") with
-// compression ("" = default, "fast" = the quickest encoding, "rle" for Targa) into out:
-// 8-bit Targa by fc-image-writer when encoded_by_image_writer says so (OpenImageIO should the
-// helper fail, with a warning), everything else by OpenImageIO. False with err (the plugin
-// missing included).
-// file_gamma is the gamma POV-Ray's writer records in the file (frame_record.h; 0: not said,
-// recorded as 1.0); only fc-image-writer records it.
-bool encode_image(const std::string &format, const std::string &compression, int width,
-                  int height, PixelType type, const void *pixels, std::vector<uint8_t> &out,
-                  std::string &err, double file_gamma = 0);
+// Encode width x height pixels with OpenImageIO in a format ("targa", "png", "openexr") with
+// compression ("" = default, "fast" = the quickest encoding, "rle" for Targa) into out. False
+// with err (the plugin missing included). Which frames go to fc-image-writer instead is
+// frame_encoder.h's choice.
+bool encode_with_image_io(const std::string &format, const std::string &compression, int width,
+                          int height, PixelType type, const void *pixels,
+                          std::vector<uint8_t> &out, std::string &err);
 
 // Read a whole image file as 3 channels of type into pixels (a short or damaged file is an
 // error); channels is the file's own count. False with err.

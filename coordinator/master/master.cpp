@@ -1,26 +1,20 @@
-// master.cpp - fc-master: renders a POV-Ray animation on the hosts of a PVM virtual machine.
-// This file is its receive loop and the handlers of the messages; master_setup.cpp does what
-// comes before and after.
+// master.cpp - fc-master's receive loop and the handlers of the messages; master_setup.cpp does
+// what comes before and after.
 //
-// Flow: parse our options (POV-Ray's pass through untouched, command_line.h), ask POV-Ray
-// for the resolved image size, frames and output name (probe_scene), skip frames already
-// complete in the output directory (resume), join or start a virtual machine and spawn
-// fc-slave tasks (cluster.h), then run the one receive loop: receive any message, switch on
-// its tag, each case a short handler. A slave holds at most two jobs and gets the next one in
-// the step that handles a result (self-scheduling, schedule.h); tiles are assembled into
-// frames, which are written as soon as they are complete (assembly.h). Timeouts, pings and
-// progress run on a clock, whatever the traffic.
+// One receive point: receive any message, switch on its tag, each case a short handler. A
+// slave holds at most two jobs and gets the next one in the step that handles a result
+// (self-scheduling, schedule.h); results go into the frame book, which writes each frame once
+// it is complete (frame_book.h). Timeouts, pings and progress run on a clock, whatever the
+// traffic.
+#include "master.h"
+
 #include <signal.h>
 #include <unistd.h>
 
-#include <cerrno>
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
-#include <cstdlib>
 #include <cstring>
-#include <algorithm>
-#include <map>
-#include <memory>
 #include <set>
 
 #include <pvm3.h>
@@ -29,9 +23,6 @@
 #include "clock.h"
 #include "debug_log.h"
 #include "files.h"
-#include "image_codec.h"
-#include "image_writer_client.h"
-#include "master.h"
 #include "protocol.h"
 #include "pvm_error.h"
 #include "text.h"
@@ -46,9 +37,6 @@ namespace {
 
 const double kTick = 0.25;          // seconds between timer checks (timeouts, pings, progress)
 const int kJobsAhead = 2;           // jobs a slave holds: the one rendering and the next
-// Complete frames kept in memory while OpenImageIO loads; with more, the master waits for the
-// load. 32 slaves on 2 cores once slowed the load to 5 s, while all 24 frames completed.
-const size_t kFramesWhileLoading = 8;
 
 // The first line of a multi-line message (for warnings that go on).
 std::string first_line(const std::string &s)
@@ -58,6 +46,12 @@ std::string first_line(const std::string &s)
 }
 
 } // namespace
+
+void Master::warn(const std::string &message)
+{
+    report_.clear_line();
+    fprintf(stderr, "fc-master: warning: %s\n", message.c_str());
+}
 
 // Cut the frames into ranges once the slaves we started said hello (or 5 s passed): sequence
 // division gives each its own range.
@@ -79,43 +73,49 @@ void Master::plan_if_ready()
     planned_ = true;
 }
 
+// The first job of a frame runs its Pre_Frame_Command, as one POV-Ray process would. False when
+// the job is not to be sent (the frame is skipped, or the render stops).
+bool Master::run_pre_frame(const Job &job)
+{
+    if (!book_->start(job.index))
+        return true;
+    int frame = book_->number(job.index);
+    ShelloutResult r = plan_.shellouts.run(Shellouts::PreFrame, frame,
+                                           files_->final_path(job.index));
+    switch (r.action) {
+    case ShelloutResult::Continue:
+        return true;
+    case ShelloutResult::Fatal:
+        fatal(r.message);
+        return false;
+    case ShelloutResult::Quit:
+    case ShelloutResult::SkipAll:
+        report_.clear_line();
+        fprintf(stderr, "fc-master: %s\n", r.message.c_str());
+        quit_early_ = true;
+        skip_post_scene_ = r.action == ShelloutResult::SkipAll;
+        return false;
+    case ShelloutResult::SkipFrame: {
+        // POV-Ray writes no file for a skipped frame.
+        report_.clear_line();
+        fprintf(stderr, "fc-master: frame %d: %s\n", frame, r.message.c_str());
+        book_->skip(job.index);
+        std::vector<Job> cancel;
+        sched_->job_done(job.id, job.index, cancel, now());
+        cancel_jobs(cancel);
+        return false;
+    }
+    }
+    return true;
+}
+
 void Master::send_job(SlaveInfo &s, const Job &job)
 {
-    // The first job of a frame runs its Pre_Frame_Command, as one POV-Ray process would.
-    if (!frame_started_[size_t(job.index)]) {
-        frame_started_[size_t(job.index)] = 1;
-        int frame = scene_.frames[size_t(job.index)];
-        ShelloutResult r = shellouts_.run(Shellouts::PreFrame, frame,
-                                          assembly_->final_path(job.index));
-        if (r.action == ShelloutResult::Fatal) {
-            fatal(r.message);
-            return;
-        }
-        if (r.action == ShelloutResult::Quit || r.action == ShelloutResult::SkipAll) {
-            report_.clear_line();
-            fprintf(stderr, "fc-master: %s\n", r.message.c_str());
-            quit_early_ = true;
-            skip_post_scene_ = r.action == ShelloutResult::SkipAll;
-            return;
-        }
-        if (r.action == ShelloutResult::SkipFrame) {
-            // POV-Ray writes no file for a skipped frame.
-            report_.clear_line();
-            fprintf(stderr, "fc-master: frame %d: %s\n", frame, r.message.c_str());
-            std::vector<int> all(size_t(sched_->tiles()));
-            for (int t = 0; t < sched_->tiles(); t++)
-                all[size_t(t)] = t;
-            std::vector<int> fresh;
-            std::vector<Job> cancel;
-            sched_->job_done(job.id, job.index, all, fresh, cancel, now());
-            cancel_jobs(cancel);
-            skipped_++;
-            return;
-        }
-    }
+    if (!run_pre_frame(job))
+        return;
     JobMsg m;
     m.job = job.id;
-    m.frame = scene_.frames[size_t(job.index)];
+    m.frame = book_->number(job.index);
     m.tiles = job.tiles;
     for (int t : job.tiles)
         m.rects.push_back(sched_->tile(t));
@@ -123,18 +123,7 @@ void Master::send_job(SlaveInfo &s, const Job &job)
     int r = send_msg(s.tid, FC_JOB, m);
     debug_log("FC_JOB %d frame %d, %zu tile(s) to t%x", job.id, m.frame, job.tiles.size(),
               unsigned(s.tid));
-    job_slave_[job.id] = s.tid;
-    host_stat(s.host).jobs++;
-    if (!opt_.stats.empty()) {
-        JobStat &js = job_stats_[job.id];
-        js.id = job.id;
-        js.frame = m.frame;
-        js.tiles = job.tiles;
-        js.host = s.host;
-        js.tid = s.tid;
-        js.dup_of = job.dup_of;
-        js.started = now();
-    }
+    stats_.job_sent(job, m.frame, s.host, s.tid);
     if (r < 0)
         slave_gone(s, "cannot be sent work: " + pvm_error(r), false);
 }
@@ -160,7 +149,7 @@ void Master::dispatch()
     }
     // Nothing running, yet frames are missing: a bookkeeping bug; do not hang on it.
     bool any_live = !sched_->jobs().empty();
-    if (!any_live && !sched_->finished() && cluster_.live_slaves() > 0 &&
+    if (!any_live && !book_->all_rendered() && cluster_.live_slaves() > 0 &&
         sched_->orphans() == 0) {
         bool ranges_idle = true;
         for (auto &kv : cluster_.slaves())
@@ -168,9 +157,7 @@ void Master::dispatch()
         if (ranges_idle) {
             int n = sched_->repair();
             if (n > 0) {
-                report_.clear_line();
-                fprintf(stderr, "fc-master: warning: %d tile(s) were lost track of and are "
-                                "queued again\n", n);
+                warn(strf("%d tile(s) were lost track of and are queued again", n));
                 dispatch();
             }
         }
@@ -180,15 +167,10 @@ void Master::dispatch()
 void Master::cancel_jobs(const std::vector<Job> &jobs)
 {
     for (const Job &j : jobs) {
-        auto it = job_slave_.find(j.id);
-        if (it == job_slave_.end())
-            continue;
-        debug_log("FC_CANCEL job %d to t%x", j.id, unsigned(it->second));
+        debug_log("FC_CANCEL job %d to t%x", j.id, unsigned(j.slave));
         if (pack_int(j.id) >= 0)
-            send_packed(it->second, FC_CANCEL);
-        if (job_stats_.count(j.id))
-            job_stats_[j.id].status = "cancelled";
-        job_slave_.erase(it);
+            send_packed(j.slave, FC_CANCEL);
+        stats_.job_ended(j.id, "cancelled");
     }
 }
 
@@ -201,16 +183,16 @@ void Master::on_hello(int src)
     s->state = SlaveState::Ready;
     s->last_msg = now();
     Setup setup;
-    setup.renderer = renderer_;
-    setup.cwd = cwd_;
+    setup.renderer = plan_.renderer;
+    setup.cwd = plan_.cwd;
     setup.options = opt_.pov;
     // The format first: the user named none when it is set.
-    setup.extra = format_options_;
-    setup.extra.insert(setup.extra.end(), extra_.begin(), extra_.end());
-    setup.width = scene_.width;
-    setup.height = scene_.height;
-    setup.digits = scene_.digits;
-    setup.last_frame = scene_.frames.back();
+    setup.extra = plan_.format_options;
+    setup.extra.insert(setup.extra.end(), plan_.extra.begin(), plan_.extra.end());
+    setup.width = plan_.scene.width;
+    setup.height = plan_.scene.height;
+    setup.digits = plan_.scene.digits;
+    setup.last_frame = plan_.scene.frames.back();
     setup.coherent = opt_.fc ? 1 : 0;
     setup.timeout = int(std::ceil(opt_.timeout));
     setup.nice = opt_.nice;
@@ -223,39 +205,102 @@ void Master::on_hello(int src)
     sched_->add_slave(src, s->dtid);
     int more = cluster_.hello(*s, h.cpus, opt_.slaves);
     if (more > 0 && host)
-        host_stat(host->name).slaves += more;
+        stats_.slaves_started(host->name, more);
     dispatch();
 }
 
-bool Master::frame_finished(int index)
+void Master::on_frame(int src)
 {
-    std::string err;
-    std::vector<uint8_t> samples;
-    bool disk_full = false;
-    if (!assembly_->write(index, samples, disk_full, err)) {
-        std::string msg = strf("cannot write frame %d: %s", scene_.frames[size_t(index)],
-                               err.c_str());
-        if (disk_full) {
-            preview_.stop();    // its files would only take what a frame needs
-            unsigned long long avail = 0;
-            std::string ignored;
-            free_bytes(outdir_, avail, ignored);
-            int missing = int(scene_.frames.size()) - resumed_ - rendered_ - skipped_;
-            msg += strf("\nfc-master: the disk holding %s is full (%s free). The %d frame(s) "
-                        "there are complete; free some space and run the same command again to "
-                        "render the other %d",
-                        outdir_.c_str(), human_bytes(double(avail)).c_str(), resumed_ + rendered_,
-                        missing);
-        }
-        write_failed_ = true;
-        fatal(msg);
-        return false;
+    FrameResult fr;
+    SlaveInfo *s = cluster_.slave(src);
+    if (!unpack(fr)) {
+        warn(strf("malformed FC_FRAME from t%x", unsigned(src)));
+        return;
     }
+    if (s)
+        s->last_msg = now();
+    int idx = book_->index_of(fr.frame);
+    bool valid = idx >= 0;
+    for (size_t k = 0; valid && k < fr.tiles.size(); k++)
+        valid = fr.tiles[k] >= 0 && fr.tiles[k] < sched_->tiles() &&
+                sched_->tile(fr.tiles[k]) == fr.rects[k];
+    if (!valid) {
+        warn(strf("unexpected frame %d of job %d from t%x", fr.frame, fr.job, unsigned(src)));
+        return;
+    }
+    std::string host = s ? s->host : "?";
+    // A result without POV-Ray's file of the frame is assembled here: its encoder may need
+    // OpenImageIO, which then loads in the background meanwhile.
+    if (fr.file.empty())
+        encoder_->result_without_file();
+    std::vector<int> fresh;
+    std::string err;
+    if (!book_->deliver(idx, fr, fresh, err)) {
+        fatal(strf("frame %d from host %s: %s", fr.frame, host.c_str(), err.c_str()));
+        return;
+    }
+    stats_.frames_held(book_->held());
+    stats_.result(fr, idx, fresh, host);
+    ResultCost cost;
+    cost.slave = src;
+    cost.index = idx;
+    for (const Rect &r : fr.rects)
+        cost.pixels += double(r.area());
+    cost.parse = fr.parse_seconds;
+    cost.trace = fr.trace_seconds;
+    cost.rays = fr.rays;
+    cost.fresh = fr.fresh != 0;
+    costs_.note_result(cost);
+    std::vector<Job> cancel;
+    sched_->job_done(fr.job, idx, cancel, now());
+    cancel_jobs(cancel);
+    // The slave's next job goes out now; the receive loop writes the frame after this
+    // (write_complete_frames), since writing may wait.
+    dispatch();
+}
+
+// Write the complete frames the book lets go now (wait: all of them). After a failed write or
+// a shell-out that asked to stop, nothing more is written, as one POV-Ray process would.
+void Master::write_complete_frames(bool wait)
+{
+    while (!write_failed_ && !quit_early_ && !failed_) {
+        int index = book_->next_to_write(wait);
+        if (index < 0)
+            return;
+        std::string err;
+        std::vector<uint8_t> samples;
+        bool disk_full = false;
+        if (!book_->write(index, samples, disk_full, err)) {
+            std::string msg = strf("cannot write frame %d: %s", book_->number(index), err.c_str());
+            if (disk_full) {
+                preview_.stop();    // its files would only take what a frame needs
+                unsigned long long avail = 0;
+                std::string ignored;
+                free_bytes(outdir_.path(), avail, ignored);
+                int complete = book_->resumed_count() + book_->written_count();
+                int missing = book_->count() - complete - book_->skipped_count();
+                msg += strf("\nfc-master: the disk holding %s is full (%s free). The %d frame(s) "
+                            "there are complete; free some space and run the same command again "
+                            "to render the other %d",
+                            outdir_.path().c_str(), human_bytes(double(avail)).c_str(), complete,
+                            missing);
+            }
+            write_failed_ = true;
+            fatal(msg);
+            return;
+        }
+        if (!frame_written(index, samples))
+            return;
+    }
+}
+
+// A frame is on disk: the preview shows it and its Post_Frame_Command runs.
+bool Master::frame_written(int index, std::vector<uint8_t> &samples)
+{
     preview_.add(index, samples);
-    frame_stats_[size_t(index)].finished_at = now() - start_;
-    rendered_++;
-    ShelloutResult r = shellouts_.run(Shellouts::PostFrame, scene_.frames[size_t(index)],
-                                      assembly_->final_path(index));
+    stats_.frame_written(index, now() - start_);
+    ShelloutResult r = plan_.shellouts.run(Shellouts::PostFrame, book_->number(index),
+                                           files_->final_path(index));
     if (r.action == ShelloutResult::Fatal) {
         fatal(r.message);
         return false;
@@ -266,136 +311,6 @@ bool Master::frame_finished(int index)
         quit_early_ = true;
     }
     return true;
-}
-
-void Master::on_frame(int src)
-{
-    FrameResult fr;
-    SlaveInfo *s = cluster_.slave(src);
-    if (!unpack(fr)) {
-        report_.clear_line();
-        fprintf(stderr, "fc-master: warning: malformed FC_FRAME from t%x\n", unsigned(src));
-        return;
-    }
-    if (s)
-        s->last_msg = now();
-    int idx = index_of(fr.frame);
-    bool valid = idx >= 0;
-    for (size_t k = 0; valid && k < fr.tiles.size(); k++)
-        valid = fr.tiles[k] >= 0 && fr.tiles[k] < sched_->tiles() &&
-                sched_->tile(fr.tiles[k]) == fr.rects[k];
-    if (!valid) {
-        report_.clear_line();
-        fprintf(stderr, "fc-master: warning: unexpected frame %d of job %d from t%x\n",
-                fr.frame, fr.job, unsigned(src));
-        return;
-    }
-    job_slave_.erase(fr.job);
-    std::vector<int> fresh;
-    std::vector<Job> cancel;
-    sched_->job_done(fr.job, idx, fr.tiles, fresh, cancel, now());
-    std::string host = s ? s->host : "?";
-    double seconds = fr.parse_seconds + fr.trace_seconds;
-    HostStat &hs = host_stat(host);
-    hs.tiles += int(fr.tiles.size());
-    hs.rays += std::max(0.0, fr.rays);
-    hs.busy += seconds;
-    host_frames_[host].insert(fr.frame);
-    if (job_stats_.count(fr.job)) {
-        JobStat &js = job_stats_[fr.job];
-        js.status = fresh.empty() ? "duplicate" : "done";
-        js.rays = fr.rays;
-        js.parse = fr.parse_seconds;
-        js.trace = fr.trace_seconds;
-    }
-    double pixels = 0;
-    for (const Rect &r : fr.rects)
-        pixels += double(r.area());
-    hs.pixels += pixels;
-    // With fc, a renderer's frame after one it did not render before it (a jump to another
-    // range) is coherent with an older frame: neither fresh nor a measure of coherent speed.
-    auto last = last_index_.find(src);
-    bool jump = opt_.fc && !fr.fresh && last != last_index_.end() && idx != last->second + 1;
-    last_index_[src] = idx;
-    if (opt_.fc) {
-        // What fc saved: its first frame in a renderer is traced in full, the yardstick.
-        savings_.rays_spent += std::max(0.0, fr.rays);
-        savings_.seconds_spent += fr.trace_seconds;
-        pixels_traced_ += pixels;
-        if (fr.fresh) {
-            fresh_rays_ += std::max(0.0, fr.rays);
-            fresh_seconds_ += fr.trace_seconds;
-            fresh_pixels_ += pixels;
-        }
-        if (jump) {
-            jump_seconds_ += fr.trace_seconds;
-            jump_pixels_ += pixels;
-        }
-    }
-    // A fresh renderer with frame coherence traced and recorded everything: no measure of
-    // the slave's speed on coherent frames.
-    if (!(fr.fresh && opt_.fc) && !jump)
-        sched_->note_speed(src, pixels, seconds);
-    double coherent_pixels = pixels_traced_ - fresh_pixels_ - jump_pixels_;
-    double coherent_seconds = savings_.seconds_spent - fresh_seconds_ - jump_seconds_;
-    if (coherent_pixels > 0 && coherent_seconds > 0) {
-        double coherent = coherent_seconds / coherent_pixels;
-        if (fresh_pixels_ > 0)
-            sched_->set_fresh_cost((fresh_seconds_ / fresh_pixels_) / coherent);
-        if (jump_pixels_ > 0)
-            sched_->set_jump_cost((jump_seconds_ / jump_pixels_) / coherent);
-    }
-    if (!fresh.empty()) {
-        // A result without POV-Ray's file of the frame is encoded here: 8-bit Targa by
-        // fc-image-writer, anything else by OpenImageIO, which loads in the background
-        // meanwhile (sequence division did not load it at the start).
-        if (fr.file.empty() && !encoded_by_image_writer(format_.oiio, format_.pixels))
-            preload_image_io();
-        std::vector<char> keep(fr.tiles.size(), 0);
-        for (size_t k = 0; k < fr.tiles.size(); k++)
-            keep[k] = std::find(fresh.begin(), fresh.end(), fr.tiles[k]) != fresh.end();
-        std::string err;
-        if (!assembly_->put(idx, fr.rects, keep, fr.encoding, fr.data, std::move(fr.file),
-                             fr.file_gamma, err)) {
-            fatal(strf("frame %d from host %s: %s", fr.frame, host.c_str(), err.c_str()));
-            return;
-        }
-        max_frames_held_ = std::max(max_frames_held_, int(assembly_->pending()));
-        FrameStat &fs = frame_stats_[size_t(idx)];
-        fs.rays += std::max(0.0, fr.rays);
-        fs.seconds += seconds;
-        fs.parses++;
-        for (int t : fresh)
-            fs.cells.push_back(CellStat{t, fr.job, host});
-        if (sched_->frame_done(idx))
-            unwritten_.push_back(idx);
-    }
-    cancel_jobs(cancel);
-    // The slave's next job goes out now; the receive loop writes the frame after this
-    // (write_complete_frames), since writing may wait.
-    dispatch();
-}
-
-// Write the complete frames, unless they are encoded by OpenImageIO, it still loads and wait
-// is false: then up to kFramesWhileLoading stay in memory until it is ready (the receive loop
-// calls this after every message and tick, and the end of the run waits), so that no slave
-// waits for its next job meanwhile. Frames fc-image-writer encodes do not wait for a load the
-// preview started. After a failed write or a shell-out that asked to stop, nothing more is
-// written, as one POV-Ray process would.
-void Master::write_complete_frames(bool wait)
-{
-    if (unwritten_.empty() ||
-        (!wait && unwritten_.size() <= kFramesWhileLoading && image_io_loading() &&
-         !encoded_by_image_writer(format_.oiio, format_.pixels)))
-        return;
-    // Frames kept during the load completed in any order (whole frames on several slaves):
-    // they go out in frame order.
-    std::sort(unwritten_.begin(), unwritten_.end());
-    size_t k = 0;
-    while (k < unwritten_.size() && !write_failed_ && !quit_early_)
-        if (!frame_finished(unwritten_[k++]))
-            break;
-    unwritten_.erase(unwritten_.begin(), unwritten_.begin() + long(k));
 }
 
 void Master::on_progress(int src)
@@ -422,36 +337,32 @@ void Master::on_fail(int src)
     if (f.job < 0) {
         // The slave could not start (no room for its directory, say); its exit follows and
         // it is replaced, up to a host's failure limit.
-        report_.clear_line();
-        fprintf(stderr, "fc-master: warning: slave t%x on host %s: %s\n", unsigned(src),
-                host.c_str(), first_line(f.message).c_str());
-        host_stat(host).failures++;
+        warn(strf("slave t%x on host %s: %s", unsigned(src), host.c_str(),
+                  first_line(f.message).c_str()));
+        stats_.host_failed(host);
         if (s && cluster_.host_failed(*s))
             leave_out_host(s->dtid, first_line(f.message));
         return;
     }
-    if (job_stats_.count(f.job))
-        job_stats_[f.job].status = "failed";
-    job_slave_.erase(f.job);
+    stats_.job_ended(f.job, "failed");
     if (f.scene_error) {
         fatal(strf("rendering failed on host %s (frame %d, %s):\n%s", host.c_str(), f.frame,
                    what.c_str(), f.message.c_str()));
         return;
     }
     // Not the scene's fault: try the job elsewhere, leave out a host that keeps failing.
-    int fi = index_of(f.frame);
+    int fi = book_->index_of(f.frame);
     if (fi >= 0)
-        frame_stats_[size_t(fi)].retried = true;
+        stats_.frame_retried(fi);
     int failures = sched_->job_failed(f.job, now());
-    host_stat(host).failures++;
+    stats_.host_failed(host);
     if (failures >= Schedule::kRetries) {
         fatal(strf("frame %d failed %d times, last on host %s (%s):\n%s", f.frame, failures,
                    host.c_str(), what.c_str(), f.message.c_str()));
         return;
     }
-    report_.clear_line();
-    fprintf(stderr, "fc-master: warning: frame %d failed on host %s (%s): %s; trying again\n",
-            f.frame, host.c_str(), what.c_str(), first_line(f.message).c_str());
+    warn(strf("frame %d failed on host %s (%s): %s; trying again", f.frame, host.c_str(),
+              what.c_str(), first_line(f.message).c_str()));
     if (s && cluster_.host_failed(*s))
         leave_out_host(s->dtid, first_line(f.message));
     dispatch();
@@ -463,10 +374,9 @@ void Master::leave_out_host(int dtid, const std::string &last_error)
     HostInfo *h = cluster_.host(dtid);
     if (!h)
         return;
-    report_.clear_line();
-    fprintf(stderr, "fc-master: warning: host %s failed %d times and is left out (last: %s)\n",
-            h->name.c_str(), h->failures, last_error.c_str());
-    host_stat(h->name).excluded = true;
+    warn(strf("host %s failed %d times and is left out (last: %s)", h->name.c_str(), h->failures,
+              last_error.c_str()));
+    stats_.host_left_out(h->name);
     for (auto &kv : cluster_.slaves()) {
         SlaveInfo &s = kv.second;
         if (s.dtid != dtid || s.state == SlaveState::Gone)
@@ -484,15 +394,13 @@ void Master::slave_gone(SlaveInfo &s, const std::string &why, bool respawn)
         return;
     s.state = SlaveState::Gone;
     for (auto &kv : sched_->jobs())
-        if (kv.second.live && kv.second.slave == s.tid && !sched_->frame_done(kv.second.index))
-            frame_stats_[size_t(kv.second.index)].retried = true;
+        if (kv.second.live && kv.second.slave == s.tid &&
+            !book_->cells().frame_done(kv.second.index))
+            stats_.frame_retried(kv.second.index);
     std::vector<int> lost = sched_->remove_slave(s.tid);
-    for (int id : lost) {
-        job_slave_.erase(id);
-        if (job_stats_.count(id))
-            job_stats_[id].status = "lost";
-    }
-    if (failed_ || quit_early_ || g_signal || sched_->finished())
+    for (int id : lost)
+        stats_.job_ended(id, "lost");
+    if (failed_ || quit_early_ || g_signal || book_->all_rendered())
         return;
     report_.clear_line();
     fprintf(stderr, "fc-master: slave t%x on %s %s%s\n", unsigned(s.tid), s.host.c_str(),
@@ -504,7 +412,7 @@ void Master::slave_gone(SlaveInfo &s, const std::string &why, bool respawn)
     if (respawn && h && h->alive && !h->excluded && h->respawns < Cluster::kRespawns) {
         h->respawns++;
         if (cluster_.spawn_on(*h, 1))
-            host_stat(h->name).slaves++;
+            stats_.slaves_started(h->name, 1);
     }
     dispatch();
 }
@@ -545,13 +453,13 @@ void Master::on_host_add()
     for (HostInfo *h : joined) {
         report_.clear_line();
         fprintf(stderr, "fc-master: host %s joined\n", h->name.c_str());
-        if (sched_->finished() || failed_)
+        if (book_->all_rendered() || failed_)
             continue;
         if (opt_.slaves > 0)
             h->grown = true;
         int count = opt_.slaves > 0 ? opt_.slaves : 1;
         if (cluster_.spawn_on(*h, count))
-            host_stat(h->name).slaves += count;
+            stats_.slaves_started(h->name, count);
     }
 }
 
@@ -590,8 +498,9 @@ void Master::work_done(double &elapsed, double &fraction, double &eta) const
     elapsed = start_ > 0 ? now() - start_ : 0;
     // Only this run's work: the tiles of frames already there are neither done nor to do.
     long tiles = sched_->tiles();
-    long todo = tiles * long(int(scene_.frames.size()) - resumed_);
-    long done = sched_->cells_done() - tiles * long(resumed_);
+    int resumed = book_->resumed_count();
+    long todo = tiles * long(book_->count() - resumed);
+    long done = book_->cells().cells_done() - tiles * long(resumed);
     fraction = todo > 0 ? double(std::max(0L, done)) / double(todo) : 1;
     eta = fraction > 0.02 && fraction < 1 ? elapsed * (1 - fraction) / fraction : -1;
 }
@@ -599,16 +508,16 @@ void Master::work_done(double &elapsed, double &fraction, double &eta) const
 ProgressState Master::progress_state() const
 {
     ProgressState p;
-    p.resumed = resumed_;
-    p.frames_todo = int(scene_.frames.size()) - resumed_;
-    p.frames_done = rendered_ + skipped_;
+    p.resumed = book_->resumed_count();
+    p.frames_todo = book_->count() - p.resumed;
+    p.frames_done = book_->written_count() + book_->skipped_count();
     work_done(p.elapsed, p.fraction, p.eta);
     std::set<int> flight;
     for (auto &kv : sched_->jobs())
         if (kv.second.live)
-            flight.insert(scene_.frames[size_t(kv.second.index)]);
+            flight.insert(book_->number(kv.second.index));
     p.in_flight.assign(flight.begin(), flight.end());
-    p.frame_pixels = double(scene_.area.area());
+    p.frame_pixels = double(plan_.scene.area.area());
     std::map<std::string, HostProgress> live;
     for (auto &kv : const_cast<Cluster &>(cluster_).slaves()) {
         const SlaveInfo &sl = kv.second;
@@ -624,9 +533,7 @@ ProgressState Master::progress_state() const
         }
     }
     for (auto &kv : live) {
-        auto it = host_stats_.find(kv.first);
-        if (it != host_stats_.end())
-            kv.second.pixels = it->second.pixels;
+        kv.second.pixels = stats_.host_pixels(kv.first);
         p.hosts.push_back(kv.second);
     }
     return p;
@@ -635,7 +542,7 @@ ProgressState Master::progress_state() const
 void Master::progress()
 {
     // The summary says when it is done: progress never shows a finished run.
-    if (sched_->finished())
+    if (book_->all_rendered())
         return;
     report_.progress(progress_state());
 }
@@ -646,10 +553,8 @@ void Master::flush_preview(bool force)
     double elapsed = 0, fraction = 0, eta = -1;
     if (!force)
         work_done(elapsed, fraction, eta);
-    if (!preview_.flush(now(), force, err, eta)) {
-        report_.clear_line();
-        fprintf(stderr, "fc-master: warning: the preview is turned off: %s\n", err.c_str());
-    }
+    if (!preview_.flush(now(), force, err, eta))
+        warn("the preview is turned off: " + err);
 }
 
 void Master::fatal(const std::string &msg)
@@ -710,11 +615,26 @@ void Master::shutdown_slaves()
     }
 }
 
+// What the clock does every kTick seconds, whatever the traffic.
+void Master::tick()
+{
+    if (!planned_)
+        dispatch();
+    check_timeouts();
+    flush_preview(false);
+    if (cluster_.live_slaves() == 0 && !book_->all_rendered() && !failed_) {
+        fatal("no slave is left to render the remaining frames" +
+              (last_failure_.empty() ? std::string() : " (last failure " + last_failure_ + ")"));
+        return;
+    }
+    progress();
+}
+
 int Master::loop()
 {
     start_ = now();
     next_tick_ = start_;    // the first tick at once: the progress line shows from the start
-    while (!sched_->finished() && !failed_ && !quit_early_) {
+    while (!book_->all_rendered() && !failed_ && !quit_early_) {
         if (g_signal) {
             report_.clear_line();
             fprintf(stderr, "fc-master: interrupted (%s): stopping the slaves\n",
@@ -733,7 +653,7 @@ int Master::loop()
         if (buf > 0) {
             int len = 0, tag = 0, src = 0;
             pvm_bufinfo(buf, &len, &tag, &src);
-            messages_++;
+            stats_.message_received();
             debug_log("recv %s from t%x (%d bytes)", tag_name(tag), unsigned(src), len);
             switch (tag) {
             case FC_HELLO: on_hello(src); break;
@@ -744,9 +664,8 @@ int Master::loop()
             case FC_HOSTDEL: on_host_delete(); break;
             case FC_HOSTADD: on_host_add(); break;
             default:
-                report_.clear_line();
-                fprintf(stderr, "fc-master: warning: unexpected message %s (%d) from t%x\n",
-                        tag_name(tag), tag, unsigned(src));
+                warn(strf("unexpected message %s (%d) from t%x", tag_name(tag), tag,
+                          unsigned(src)));
             }
             pvm_freebuf(buf);
         }
@@ -756,16 +675,9 @@ int Master::loop()
         if (now() < next_tick_)
             continue;
         next_tick_ = now() + kTick;
-        if (!planned_)
-            dispatch();
-        check_timeouts();
-        flush_preview(false);
-        if (cluster_.live_slaves() == 0 && !sched_->finished() && !failed_) {
-            fatal("no slave is left to render the remaining frames" +
-                  (last_failure_.empty() ? std::string() : " (last failure " + last_failure_ + ")"));
+        tick();
+        if (failed_)
             break;
-        }
-        progress();
     }
     // Complete frames are kept after a scene error too, as they are by one POV-Ray process.
     write_complete_frames(true);

@@ -110,7 +110,7 @@ bool Preview::write_png(const std::string &name, int w, int h, const std::vector
                         std::string &err)
 {
     std::vector<uint8_t> bytes;
-    if (!encode_image("png", "fast", w, h, PixelType::U8, rgb.data(), bytes, err))
+    if (!encode_with_image_io("png", "fast", w, h, PixelType::U8, rgb.data(), bytes, err))
         return false;
     std::string path = dir_ + "/" + name, tmp = path + ".tmp";
     if (!write_file_durably(tmp, bytes.data(), bytes.size(), err))

@@ -1,4 +1,4 @@
-// report.cpp - progress display or lines, end summary, --stats JSON (see report.h).
+// report.cpp - progress display or lines, end summary (see report.h).
 #include "report.h"
 
 #include <sys/ioctl.h>
@@ -245,90 +245,6 @@ std::string Report::summary(const RunSummary &r) const
                   h.excluded ? "  (left out after failures)" : "");
     }
     return s;
-}
-
-std::string Report::json_string(const std::string &in)
-{
-    std::string out = "\"";
-    for (unsigned char c : in) {
-        switch (c) {
-        case '"': out += "\\\""; break;
-        case '\\': out += "\\\\"; break;
-        case '\n': out += "\\n"; break;
-        case '\t': out += "\\t"; break;
-        case '\r': out += "\\r"; break;
-        default:
-            if (c < 0x20)
-                out += strf("\\u%04x", c);
-            else
-                out += char(c);
-        }
-    }
-    return out + "\"";
-}
-
-bool Report::write_json(const std::string &path, const std::string &json_head,
-                        const std::vector<FrameStat> &frames, const std::map<int, JobStat> &jobs,
-                        const std::map<std::string, HostStat> &hosts, std::string &err) const
-{
-    std::string j = "{\n" + json_head;
-    j += "  \"frames\": [\n";
-    for (size_t i = 0; i < frames.size(); i++) {
-        const FrameStat &f = frames[i];
-        std::vector<std::string> host_list;
-        for (const CellStat &c : f.cells)
-            if (std::find(host_list.begin(), host_list.end(), c.host) == host_list.end())
-                host_list.push_back(c.host);
-        std::string hosts_json;
-        for (size_t k = 0; k < host_list.size(); k++)
-            hosts_json += (k ? ", " : "") + json_string(host_list[k]);
-        j += strf("    {\"frame\": %d, \"file\": %s, \"resumed\": %s, \"retried\": %s, "
-                 "\"host\": %s, \"hosts\": [%s], \"rays\": %.0f, \"time\": %.3f, \"parses\": %d, "
-                 "\"finished_at\": %.3f, \"tiles\": [",
-                 f.frame, json_string(f.file).c_str(), f.resumed ? "true" : "false",
-                 f.retried ? "true" : "false",
-                 host_list.empty() ? "null" : json_string(host_list[0]).c_str(),
-                 hosts_json.c_str(), f.rays, f.seconds, f.parses, f.finished_at);
-        for (size_t k = 0; k < f.cells.size(); k++) {
-            const CellStat &c = f.cells[k];
-            j += strf("%s{\"tile\": %d, \"job\": %d, \"host\": %s}", k ? ", " : "", c.tile,
-                      c.job, json_string(c.host).c_str());
-        }
-        j += strf("]}%s\n", i + 1 < frames.size() ? "," : "");
-    }
-    j += "  ],\n  \"jobs\": [\n";
-    size_t n = 0;
-    for (auto &kv : jobs) {
-        const JobStat &u = kv.second;
-        std::string tiles;
-        for (size_t k = 0; k < u.tiles.size(); k++)
-            tiles += strf("%s%d", k ? ", " : "", u.tiles[k]);
-        j += strf("    {\"id\": %d, \"frame\": %d, \"tiles\": [%s], \"host\": %s, \"tid\": \"t%x\", "
-                 "\"duplicate_of\": %s, \"status\": %s, \"rays\": %.0f, \"parse\": %.4f, "
-                 "\"trace\": %.4f}%s\n",
-                 u.id, u.frame, tiles.c_str(), json_string(u.host).c_str(), unsigned(u.tid),
-                 u.dup_of >= 0 ? strf("%d", u.dup_of).c_str() : "null",
-                 json_string(u.status).c_str(), u.rays, u.parse, u.trace,
-                 ++n < jobs.size() ? "," : "");
-    }
-    j += "  ],\n  \"hosts\": [\n";
-    n = 0;
-    for (auto &kv : hosts) {
-        const HostStat &h = kv.second;
-        j += strf("    {\"name\": %s, \"slaves\": %d, \"jobs\": %d, \"frames\": %d, "
-                 "\"tiles\": %d, \"failures\": %d, \"excluded\": %s, \"rays\": %.0f, "
-                 "\"busy\": %.3f, \"pixels\": %.0f}%s\n",
-                 json_string(h.name).c_str(), h.slaves, h.jobs, h.frames, h.tiles, h.failures,
-                 h.excluded ? "true" : "false", h.rays, h.busy, h.pixels,
-                 ++n < hosts.size() ? "," : "");
-    }
-    j += "  ]\n}\n";
-    std::string tmp = path + ".tmp";
-    if (!write_text(tmp, j, err))
-        return false;
-    if (rename(tmp.c_str(), path.c_str()) != 0)
-        return sys_fail(err, "rename " + tmp);
-    return true;
 }
 
 } // namespace fc

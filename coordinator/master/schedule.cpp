@@ -13,7 +13,6 @@ namespace {
 // With fc, move tiles while a slave's share exceeds its speed's by this much: a move costs its
 // new slave a full trace of the tile.
 const double kImbalance = 1.2;
-const double kSpeedWeight = 0.3;    // weight of the newest measurement in a slave's speed
 
 } // namespace
 
@@ -45,32 +44,10 @@ std::vector<Rect> make_tiles(const Rect &area, int size)
     return tiles;
 }
 
-Schedule::Schedule(const std::vector<Rect> &tiles, int nframes, Division division)
-    : tiles_(tiles), nframes_(nframes), division_(division),
-      done_(tiles.size() * size_t(nframes), 0), frame_cells_(size_t(nframes), 0)
+Schedule::Schedule(const std::vector<Rect> &tiles, const CellGrid &cells, const CostModel &costs,
+                   Division division)
+    : tiles_(tiles), cells_(cells), costs_(costs), division_(division)
 {
-}
-
-bool Schedule::done(int index, int tile) const
-{
-    return done_[size_t(index) * tiles_.size() + size_t(tile)] != 0;
-}
-
-void Schedule::mark_done(int index, int tile)
-{
-    char &d = done_[size_t(index) * tiles_.size() + size_t(tile)];
-    if (d)
-        return;
-    d = 1;
-    cells_done_++;
-    if (++frame_cells_[size_t(index)] == tiles())
-        frames_done_++;
-}
-
-void Schedule::mark_frame_done(int index)
-{
-    for (int t = 0; t < tiles(); t++)
-        mark_done(index, t);
 }
 
 std::vector<int> Schedule::missing(int index, const std::vector<int> &tiles) const
@@ -85,7 +62,7 @@ std::vector<int> Schedule::missing(int index, const std::vector<int> &tiles) con
 void Schedule::plan(int parts, int slaves)
 {
     std::vector<int> todo;
-    for (int i = 0; i < nframes_; i++)
+    for (int i = 0; i < frames(); i++)
         if (!frame_done(i))
             todo.push_back(i);
     if (todo.empty())
@@ -196,7 +173,6 @@ std::vector<int> Schedule::remove_slave(int slave)
             orphan(j.index, j.tiles, j.failures, 0);
     }
     slaves_.erase(it);
-    speed_.erase(slave);
     prune();
     return lost;
 }
@@ -216,17 +192,17 @@ std::map<int, double> Schedule::member_speeds(const Range &r) const
     double measured = 0;
     int nmeasured = 0;
     for (int s : r.members) {
-        auto it = speed_.find(s);
-        if (it != speed_.end() && it->second > 0) {
-            measured += it->second;
+        double v = costs_.speed(s);
+        if (v > 0) {
+            measured += v;
             nmeasured++;
         }
     }
     double typical = nmeasured > 0 ? measured / nmeasured : 1.0;
     std::map<int, double> speed;
     for (int s : r.members) {
-        auto it = speed_.find(s);
-        speed[s] = it != speed_.end() && it->second > 0 ? it->second : typical;
+        double v = costs_.speed(s);
+        speed[s] = v > 0 ? v : typical;
     }
     return speed;
 }
@@ -237,7 +213,7 @@ int Schedule::window(const Range &range) const
     // member has up to two queued: the window must not stop a fast member while the slowest
     // renders its two. Divided frames (the last ones) stay within kWindow: the master holds
     // them until their last tile.
-    if (cheap_moves_ && range.members.size() > 1 && range.frontier <= range.hi &&
+    if (costs_.cheap_moves() && range.members.size() > 1 && range.frontier <= range.hi &&
         whole_frames(range, range.frontier, member_speeds(range)))
         return kWindow + 2 * int(range.members.size());
     return kWindow;
@@ -278,7 +254,7 @@ void Schedule::divide(int ri, int index, double when)
     double area = 0;
     for (int t : todo)
         area += tiles_[size_t(t)].area();
-    if (cheap_moves_ && whole_frames(r, index, speed)) {
+    if (costs_.cheap_moves() && whole_frames(r, index, speed)) {
         const std::map<int, double> free_at = seconds_until_free(r, index, when, speed);
         int first = m[0];
         for (int s : m)
@@ -294,7 +270,7 @@ void Schedule::divide(int ri, int index, double when)
         load[s] = 0;
         target[s] = area * speed.at(s) / total_speed;
     }
-    if (cheap_moves_)
+    if (costs_.cheap_moves())
         finish_together(r, index, when, area, speed, target);
     bool first_division = true;
     for (int t : todo) {
@@ -302,7 +278,7 @@ void Schedule::divide(int ri, int index, double when)
         if (o != r.owner.end() && load.count(o->second))
             first_division = false;
     }
-    if (first_division || cheap_moves_) {
+    if (first_division || costs_.cheap_moves()) {
         // Tiles dealt in raster order to the member furthest below its share (by speed):
         // every slave gets tiles all over the frame, so a region that is expensive to render
         // (frame coherence re-traces only what moved) is shared instead of holding one back.
@@ -554,7 +530,7 @@ bool Schedule::jumps_forward(const Range &r, const SlaveState &s) const
 // start, and the fast host sat idle while the others rendered the frames it had left them.
 double Schedule::unmeasured_jump_cost() const
 {
-    return (1 + fresh_cost_) / 2;
+    return (1 + costs_.fresh_cost()) / 2;
 }
 
 int Schedule::split_take(const Range &r, int slave) const
@@ -569,15 +545,16 @@ int Schedule::split_take(const Range &r, int slave) const
     // = (left - n) / v; taking none is better when n < 1. Speeds not measured yet count as
     // equal.
     double u = 1, v = 1;
-    auto mine = speed_.find(slave), theirs = speed_.find(r.members.front());
-    if (mine != speed_.end() && theirs != speed_.end() && mine->second > 0 && theirs->second > 0)
-        u = mine->second, v = theirs->second;
-    double first = fresh_cost_;
+    double mine = costs_.speed(slave), theirs = costs_.speed(r.members.front());
+    if (mine > 0 && theirs > 0)
+        u = mine, v = theirs;
+    const double fresh = costs_.fresh_cost(), jump = costs_.jump_cost();
+    double first = fresh;
     if (jumps_forward(r, s))
-        first = jump_cost_ > 0 ? std::min(jump_cost_, fresh_cost_) : unmeasured_jump_cost();
+        first = jump > 0 ? std::min(jump, fresh) : unmeasured_jump_cost();
     double balanced = (double(left) * u - (first - 1) * v) / (u + v);
     // Without fc a tie goes to the newcomer (half of an odd number rounds up).
-    return std::max(0, int(std::floor(balanced + (fresh_cost_ > 1 ? 0.0 : 0.5))));
+    return std::max(0, int(std::floor(balanced + (fresh > 1 ? 0.0 : 0.5))));
 }
 
 // Give a slave without a range one: an abandoned range first, then (frame division) the
@@ -631,7 +608,7 @@ bool Schedule::find_range(int slave)
         int n = split_take(c, slave);
         if (n < 1)
             continue;
-        bool forward = fresh_cost_ > 1 && jumps_forward(c, s);
+        bool forward = costs_.fresh_cost() > 1 && jumps_forward(c, s);
         bool better = forward ? !ahead || c.lo < ranges_[size_t(best)].lo
                               : !ahead && (n > take || (n == take && int(i) == best));
         if (better) {
@@ -663,7 +640,7 @@ const Job *Schedule::duplicate(int slave, double t)
         if (!j.live || j.slave == slave || j.rendering < 0 || j.dup_of >= 0 || j.has_dup ||
             missing(j.index, j.tiles).empty())
             continue;
-        if (t - j.rendering < std::max(kStragglerSeconds, 2 * job_seconds_))
+        if (t - j.rendering < std::max(kStragglerSeconds, 2 * costs_.job_seconds()))
             continue;
         if (!oldest || j.rendering < oldest->rendering)
             oldest = &j;
@@ -717,17 +694,10 @@ void Schedule::next_rendering(int slave, double t)
         first->rendering = t;
 }
 
-void Schedule::job_done(int id, int index, const std::vector<int> &tiles, std::vector<int> &fresh,
-                        std::vector<Job> &cancel, double t)
+void Schedule::job_done(int id, int index, std::vector<Job> &cancel, double t)
 {
-    fresh.clear();
-    if (index < 0 || index >= nframes_)
+    if (index < 0 || index >= frames())
         return;
-    for (int t : tiles)
-        if (t >= 0 && t < this->tiles() && !done(index, t)) {
-            mark_done(index, t);
-            fresh.push_back(t);
-        }
     auto it = jobs_.find(id);
     int slave = 0;
     if (it != jobs_.end()) {
@@ -775,17 +745,6 @@ int Schedule::job_failed(int id, double t)
     return missing(j.index, j.tiles).empty() ? 0 : j.failures + 1;
 }
 
-void Schedule::note_speed(int slave, double pixels, double seconds)
-{
-    if (seconds <= 0 || pixels <= 0)
-        return;
-    job_seconds_ = job_seconds_ <= 0 ? seconds
-                                     : (1 - kSpeedWeight) * job_seconds_ + kSpeedWeight * seconds;
-    double v = pixels / seconds;
-    auto it = speed_.find(slave);
-    speed_[slave] = it == speed_.end() ? v : (1 - kSpeedWeight) * it->second + kSpeedWeight * v;
-}
-
 const Job *Schedule::find(int id) const
 {
     auto it = jobs_.find(id);
@@ -803,7 +762,7 @@ int Schedule::live_jobs(int slave) const
 int Schedule::repair()
 {
     // Cells a live job, an orphan, or a range's reservation or undivided frames will render.
-    std::vector<char> covered(done_.size(), 0);
+    std::vector<char> covered(size_t(frames()) * tiles_.size(), 0);
     auto cover = [&](int index, const std::vector<int> &tiles) {
         for (int t : tiles)
             covered[size_t(index) * tiles_.size() + size_t(t)] = 1;
@@ -822,7 +781,7 @@ int Schedule::repair()
                 covered[size_t(i) * tiles_.size() + size_t(t)] = 1;
     }
     int added = 0;
-    for (int i = 0; i < nframes_; i++) {
+    for (int i = 0; i < frames(); i++) {
         std::vector<int> lost;
         for (int t = 0; t < tiles(); t++)
             if (!done(i, t) && !covered[size_t(i) * tiles_.size() + size_t(t)])

@@ -50,6 +50,8 @@
 #include <string>
 #include <vector>
 
+#include "cell_grid.h"
+#include "cost_model.h"
 #include "protocol.h"
 
 namespace fc {
@@ -83,40 +85,30 @@ public:
     static constexpr double kStragglerSeconds = 1.0;   // a job runs this long before a copy
     static const int kMoveGap = 2 * kWindow;    // frames between two rebalancing moves
 
-    Schedule(const std::vector<Rect> &tiles, int nframes, Division division);
+    // The schedule reads which cells are done from `cells` (kept by the frame book) and what
+    // work costs from `costs` (fed with the results); both outlive it.
+    Schedule(const std::vector<Rect> &tiles, const CellGrid &cells, const CostModel &costs,
+             Division division);
 
     int tiles() const { return int(tiles_.size()); }
-    int frames() const { return nframes_; }
+    int frames() const { return cells_.frames(); }
     const Rect &tile(int t) const { return tiles_[size_t(t)]; }
-
-    // Resume: a frame that is already complete needs no work.
-    void mark_frame_done(int index);
-    bool done(int index, int tile) const;
-    bool frame_done(int index) const { return frame_cells_[size_t(index)] == tiles(); }
-    int frames_done() const { return frames_done_; }
-    long cells_done() const { return cells_done_; }
-    bool finished() const { return frames_done_ == nframes_; }
 
     // Cut the missing frames into `parts` ranges (sequence, hybrid) or one (frame). A hybrid
     // range is shared by its part of the `slaves` expected (rounded up); a slave beyond that
     // splits a range, as in sequence division.
     void plan(int parts, int slaves = 0);
 
-    // Without frame coherence a moved tile costs its new slave nothing extra: then every
-    // frame is dealt afresh by speed, not only after a slave had to wait.
-    void set_cheap_moves(bool cheap) { cheap_moves_ = cheap; }
-    // With frame coherence a renderer's first frame is traced in full: it costs `frames`
-    // coherent frames (measured). A split then gives the newcomer as many frames as let both
-    // finish together at their measured speeds, and none when it could not finish sooner.
-    // (A renderer that jumps forward keeps its samples and pays less than a first frame:
-    // the estimate errs towards splitting too little.)
-    void set_fresh_cost(double frames) { fresh_cost_ = frames; }
-    // In sequence division a renderer that rendered before keeps its samples when it jumps
-    // forward to the tail of another range: its first frame there costs `frames` coherent
-    // frames (measured on the jumps so far; until one was seen, a jump is priced halfway
-    // between a coherent frame and a fresh start). A renderer cannot go back (it ends after
-    // the animation's last frame): a tail before a slave's last frame is a fresh start.
-    void set_jump_cost(double frames) { jump_cost_ = frames; }
+    // What the costs mean for the work (cost_model.h). Without frame coherence a moved tile
+    // costs its new slave nothing extra (cheap moves): then every frame is dealt afresh by
+    // speed, not only after a slave had to wait. With frame coherence a renderer's first frame
+    // is traced in full and costs fresh_cost coherent frames: a split gives the newcomer as
+    // many frames as let both finish together at their measured speeds, and none when it could
+    // not finish sooner. In sequence division a renderer that rendered before keeps its
+    // samples when it jumps forward to the tail of another range: its first frame there costs
+    // jump_cost coherent frames (until one was seen, a jump is priced halfway between a
+    // coherent frame and a fresh start). A renderer cannot go back (it ends after the
+    // animation's last frame): a tail before a slave's last frame is a fresh start.
 
     // Slaves: a slave joins when it is ready (host identifies its machine for retries).
     void add_slave(int slave, int host);
@@ -126,19 +118,15 @@ public:
     // The next job for slave, or nullptr when there is nothing for it now.
     const Job *next_job(int slave, double t, bool allow_duplicates);
 
-    // The result of job id arrived: the given tiles of frame index (a job of a slave that was
-    // given up for lost still counts: the first result of a cell wins). fresh gets the tiles
-    // that were new (store their pixels); jobs that have nothing left to add are appended to
-    // cancel (they are no longer live).
-    void job_done(int id, int index, const std::vector<int> &tiles, std::vector<int> &fresh,
-                  std::vector<Job> &cancel, double t);
+    // The result of job id for frame index arrived, and its new cells are marked in the grid
+    // (a job of a slave that was given up for lost still counts: the first result of a cell
+    // wins). Jobs that have nothing left to add are appended to cancel (they are no longer
+    // live).
+    void job_done(int id, int index, std::vector<Job> &cancel, double t);
 
     // A job failed on its slave (not a scene error): its missing cells become orphans that
     // avoid that host. Returns the largest failure count of those cells.
     int job_failed(int id, double t);
-
-    // Measured speed of a slave: pixels of a job per second.
-    void note_speed(int slave, double pixels, double seconds);
 
     const Job *find(int id) const;
     const std::map<int, Job> &jobs() const { return jobs_; }
@@ -173,7 +161,9 @@ private:
         std::set<int> avoid_hosts;
     };
 
-    void mark_done(int index, int tile);
+    bool done(int index, int tile) const { return cells_.done(index, tile); }
+    bool frame_done(int index) const { return cells_.frame_done(index); }
+    bool finished() const { return cells_.all_done(); }
     void prune();
     void next_rendering(int slave, double t);
     int add_job(int slave, int index, const std::vector<int> &tiles, int range, double t);
@@ -200,19 +190,11 @@ private:
     long range_work(const Range &range) const;
 
     std::vector<Rect> tiles_;
-    int nframes_;
+    const CellGrid &cells_;
+    const CostModel &costs_;
     Division division_;
-    std::vector<char> done_;            // frame-major: done_[index * tiles + tile]
-    std::vector<int> frame_cells_;
-    int frames_done_ = 0;
-    long cells_done_ = 0;
     std::vector<Range> ranges_;
     std::map<int, SlaveState> slaves_;
-    std::map<int, double> speed_;       // pixels per second, smoothed
-    double job_seconds_ = 0;            // how long a job takes, smoothed
-    bool cheap_moves_ = false;
-    double fresh_cost_ = 1;             // a fresh renderer's first frame, in coherent frames
-    double jump_cost_ = 0;              // a renderer's first frame after a jump (0: unknown)
     int hybrid_members_ = 1;            // slaves a hybrid range takes before it is split
     std::deque<Orphan> orphans_;
     std::map<int, Job> jobs_;

@@ -14,21 +14,46 @@ using namespace fc;
 
 static const Rect kArea{0, 0, 160, 120};
 
-// Deliver job j: every tile of it arrives.
-static std::vector<int> deliver(Schedule &s, const Job &j, std::vector<Job> *cancelled = nullptr,
-                                double t = 0)
+// A schedule with the frames' cells and the costs it reads, as fc-master holds them: the cells
+// are marked as the frame book marks them, the costs set as the results would set them.
+struct Board : CellGrid, CostModel, Schedule {
+    Board(const std::vector<Rect> &tiles, int frames, Division division)
+        : CellGrid(frames, int(tiles.size())), Schedule(tiles, *this, *this, division)
+    {
+    }
+    using CellGrid::done;
+    using CellGrid::frame_done;
+    using Schedule::frames;
+    using Schedule::tiles;
+};
+
+// The result of job j arrives, every tile of it: its new cells are marked, then the schedule
+// learns of it. Returns the tiles that were new.
+static std::vector<int> job_done(Board &s, int id, int index, const std::vector<int> &tiles,
+                                 std::vector<Job> &cancel, double t)
 {
     std::vector<int> fresh;
+    for (int tile : tiles)
+        if (s.mark(index, tile))
+            fresh.push_back(tile);
+    s.job_done(id, index, cancel, t);
+    return fresh;
+}
+
+// Deliver job j: every tile of it arrives.
+static std::vector<int> deliver(Board &s, const Job &j, std::vector<Job> *cancelled = nullptr,
+                                double t = 0)
+{
     std::vector<Job> cancel;
     Job copy = j;
-    s.job_done(copy.id, copy.index, copy.tiles, fresh, cancel, t);
+    std::vector<int> fresh = job_done(s, copy.id, copy.index, copy.tiles, cancel, t);
     if (cancelled)
         *cancelled = cancel;
     return fresh;
 }
 
 // Frames some but not all of whose tiles are done: what the master holds in memory.
-static int partial_frames(const Schedule &s)
+static int partial_frames(const Board &s)
 {
     int partial = 0;
     for (int i = 0; i < s.frames(); i++) {
@@ -42,7 +67,7 @@ static int partial_frames(const Schedule &s)
 
 TEST(Schedule, SequenceRanges)
 {
-    Schedule s({kArea}, 10, Division::Sequence);
+    Board s({kArea}, 10, Division::Sequence);
     for (int slave : {1, 2, 3})
         s.add_slave(slave, 100);
     s.plan(3);
@@ -57,7 +82,7 @@ TEST(Schedule, SequenceRanges)
 
 TEST(Schedule, FrameDivisionKeepsTiles)
 {
-    Schedule s(make_tiles(kArea, 40), 6, Division::Frame);     // 4 x 3 tiles
+    Board s(make_tiles(kArea, 40), 6, Division::Frame);     // 4 x 3 tiles
     s.add_slave(1, 100);
     s.add_slave(2, 100);
     s.plan(2);
@@ -77,12 +102,12 @@ TEST(Schedule, FrameDivisionKeepsTiles)
         EXPECT_TRUE(s.frame_done(i));
     }
     EXPECT_TRUE(first[1].size() == 6 && first[2].size() == 6);
-    EXPECT_TRUE(s.finished());
+    EXPECT_TRUE(s.all_done());
 }
 
 TEST(Schedule, WindowAndRebalance)
 {
-    Schedule s(make_tiles(kArea, 40), 40, Division::Frame);
+    Board s(make_tiles(kArea, 40), 40, Division::Frame);
     s.add_slave(1, 100);
     s.add_slave(2, 100);
     s.plan(1);
@@ -110,7 +135,7 @@ TEST(Schedule, WindowAndRebalance)
 }
 
 // Without fc (moves are free): slaves 1 and 2, on hosts of their own.
-static void two_slaves_without_fc(Schedule &s)
+static void two_slaves_without_fc(Board &s)
 {
     s.set_cheap_moves(true);
     s.add_slave(1, 100);
@@ -121,7 +146,7 @@ static void two_slaves_without_fc(Schedule &s)
 // tests below render two frames, both in that tail); earlier ones go whole to one slave.
 TEST(Schedule, CheapMovesBalanceTheLastFrames)
 {
-    Schedule s(make_tiles(kArea, 40), 2, Division::Frame);
+    Board s(make_tiles(kArea, 40), 2, Division::Frame);
     two_slaves_without_fc(s);
     s.plan(1);
     const Job *a = s.next_job(1, 0, true);
@@ -143,7 +168,7 @@ TEST(Schedule, CheapMovesDealEveryFrameAfresh)
     // Without fc a frame's tiles go out as if it were the first frame at the slaves' current
     // speeds, whoever had them before: spread over the frame, not the tiles nearest a
     // slave's old share.
-    Schedule s(make_tiles(kArea, 40), 2, Division::Frame);
+    Board s(make_tiles(kArea, 40), 2, Division::Frame);
     two_slaves_without_fc(s);
     s.plan(1);
     Job a = *s.next_job(1, 0, true), b = *s.next_job(2, 0, true);
@@ -153,7 +178,7 @@ TEST(Schedule, CheapMovesDealEveryFrameAfresh)
     deliver(s, b);
     std::vector<int> later = s.next_job(2, 1, true)->tiles;
 
-    Schedule fresh(make_tiles(kArea, 40), 2, Division::Frame);
+    Board fresh(make_tiles(kArea, 40), 2, Division::Frame);
     two_slaves_without_fc(fresh);
     fresh.note_speed(1, 3e5, 1.0);
     fresh.note_speed(2, 1e5, 1.0);
@@ -168,7 +193,7 @@ TEST(Schedule, CheapMovesLetSlavesFinishTogether)
     // Without fc a slave still busy with an earlier frame gets less of the next one: equal
     // speeds, but slave 2 has all of its frame-0 share (6 tiles of 1600 pixels, 0.096 s) to
     // go when slave 1 asks for frame 1. Both then finish frame 1 at 0.144 s: 9 tiles and 3.
-    Schedule s(make_tiles(kArea, 40), 2, Division::Frame);
+    Board s(make_tiles(kArea, 40), 2, Division::Frame);
     two_slaves_without_fc(s);
     s.plan(1);
     Job a = *s.next_job(1, 0, true);
@@ -186,7 +211,7 @@ TEST(Schedule, CheapMovesDealWholeFrames)
     // one per slave. Slave 1 is three times as fast as slave 2; each keeps two jobs queued,
     // and the faster one finishes its jobs first.
     const int nframes = 20;
-    Schedule s(make_tiles(kArea, 40), nframes, Division::Frame);   // 12 tiles a frame
+    Board s(make_tiles(kArea, 40), nframes, Division::Frame);   // 12 tiles a frame
     two_slaves_without_fc(s);
     s.plan(1);
     std::map<int, std::vector<Job>> queued;
@@ -194,7 +219,7 @@ TEST(Schedule, CheapMovesDealWholeFrames)
     std::map<int, int> whole;       // slave -> whole frames rendered
     double t = 0;
     int steps = 0;
-    while (!s.finished() && steps++ < 1000) {
+    while (!s.all_done() && steps++ < 1000) {
         for (int slave : {1, 2})
             while (queued[slave].size() < 2) {
                 const Job *j = s.next_job(slave, t, false);
@@ -218,7 +243,7 @@ TEST(Schedule, CheapMovesDealWholeFrames)
             whole[slave]++;
         deliver(s, j, nullptr, t);
     }
-    EXPECT_TRUE(s.finished());
+    EXPECT_TRUE(s.all_done());
     // Whole frames until the tail: at these speeds (3 : 1) the last four frames are divided.
     for (int i = 0; i < nframes - 4; i++)
         EXPECT_TRUE(parses[i] == 1);
@@ -236,7 +261,7 @@ TEST(Schedule, CheapMovesDividedFramesKeepTheWindow)
     // slave keeps its share of the oldest, the others divide at most kWindow frames (32
     // slaves of master-scale on 24 frames once held all 24).
     const int nframes = 12;
-    Schedule s(make_tiles(kArea, 20), nframes, Division::Frame);     // 48 tiles
+    Board s(make_tiles(kArea, 20), nframes, Division::Frame);     // 48 tiles
     s.set_cheap_moves(true);
     for (int slave = 1; slave <= 16; slave++)
         s.add_slave(slave, 100 * slave);
@@ -260,7 +285,7 @@ TEST(Schedule, CheapMovesWindowFitsQueuedWholeFrames)
 {
     // A slave that holds two whole frames does not stop the other at kWindow frames: whole
     // frames reach the master complete. Stuck for good, it still stops it a little later.
-    Schedule s(make_tiles(kArea, 40), 40, Division::Frame);
+    Board s(make_tiles(kArea, 40), 40, Division::Frame);
     two_slaves_without_fc(s);
     s.plan(1);
     const Job *a = s.next_job(2, 0, true);
@@ -278,7 +303,7 @@ TEST(Schedule, CheapMovesWindowFitsQueuedWholeFrames)
 
 TEST(Schedule, MoreSlavesThanTiles)
 {
-    Schedule s(make_tiles(kArea, 80), 12, Division::Frame);     // 4 tiles
+    Board s(make_tiles(kArea, 80), 12, Division::Frame);     // 4 tiles
     for (int slave = 1; slave <= 6; slave++)
         s.add_slave(slave, 100 * slave);
     s.plan(1);
@@ -292,9 +317,9 @@ TEST(Schedule, MoreSlavesThanTiles)
 
 TEST(Schedule, ResumeSkipsDoneFrames)
 {
-    Schedule s({kArea}, 10, Division::Sequence);
+    Board s({kArea}, 10, Division::Sequence);
     for (int i : {0, 1, 5})
-        s.mark_frame_done(i);
+        s.mark_frame(i);
     EXPECT_TRUE(s.frames_done() == 3);
     s.add_slave(1, 100);
     s.plan(1);
@@ -305,12 +330,12 @@ TEST(Schedule, ResumeSkipsDoneFrames)
     }
     // Finished frames get no job.
     EXPECT_TRUE((got == std::vector<int>{2, 3, 4, 6, 7, 8, 9}));
-    EXPECT_TRUE(s.finished());
+    EXPECT_TRUE(s.all_done());
 }
 
 TEST(Schedule, IdleSlaveSplitsRange)
 {
-    Schedule s({kArea}, 10, Division::Sequence);
+    Board s({kArea}, 10, Division::Sequence);
     s.add_slave(1, 100);
     s.plan(1);
     const Job *a = s.next_job(1, 0, true);
@@ -340,7 +365,7 @@ TEST(Schedule, HybridRangesAreShared)
 {
     // Four slaves, two ranges: each range's frames are divided between two of them; a fifth
     // slave arriving later splits a range, as in sequence division.
-    Schedule s(make_tiles(kArea, 40), 10, Division::Hybrid);     // 12 tiles
+    Board s(make_tiles(kArea, 40), 10, Division::Hybrid);     // 12 tiles
     for (int slave : {1, 2, 3, 4})
         s.add_slave(slave, 100);
     s.plan(2, 4);
@@ -365,7 +390,7 @@ TEST(Schedule, FreshCostShortensSplits)
     // With fc a newcomer's first frame costs 5 coherent frames: of 9 undivided frames it
     // takes (9 + 1 - 5) / 2 = 2, so both finish together; of 4 it takes none.
     for (int frames : {11, 6}) {
-        Schedule s({kArea}, frames, Division::Sequence);
+        Board s({kArea}, frames, Division::Sequence);
         s.set_fresh_cost(5);
         s.add_slave(1, 100);
         s.plan(1, 1);
@@ -382,9 +407,8 @@ TEST(Schedule, FreshCostShortensSplits)
 }
 
 // Slave renders the next `count` frames of its range, from index `first`, one job at a time.
-static void finish_range(Schedule &s, int slave, int first, int count)
+static void finish_range(Board &s, int slave, int first, int count)
 {
-    std::vector<int> fresh;
     std::vector<Job> cancel;
     for (int k = 0; k < count; k++) {
         const Job *j = s.next_job(slave, 0, true);
@@ -393,7 +417,7 @@ static void finish_range(Schedule &s, int slave, int first, int count)
             return;
         int id = j->id, index = j->index;
         std::vector<int> tiles = j->tiles;
-        s.job_done(id, index, tiles, fresh, cancel, 0);
+        job_done(s, id, index, tiles, cancel, 0);
     }
 }
 
@@ -408,7 +432,7 @@ TEST(Schedule, JumpCostLengthensSplits)
     // a jump cost above the fresh one is not believed (5 again: 2 frames).
     for (bool forward : {true, false}) {
         for (double jump : {0.0, 2.0, 8.0}) {
-            Schedule s({kArea}, 22, Division::Sequence);
+            Board s({kArea}, 22, Division::Sequence);
             s.set_fresh_cost(5);
             if (jump > 0)
                 s.set_jump_cost(jump);
@@ -433,7 +457,7 @@ TEST(Schedule, SplitPrefersAForwardJump)
     // undivided, behind slave 2: a fresh start, worth (9 - 4) / 2 = 2 frames), slave 3 has
     // 22..25 (7 undivided, ahead: a jump of 2 frames, worth (7 - 1) / 2 = 3). The split takes
     // the 3 at the end of slave 3's range, not 2 of the range with more work.
-    Schedule s({kArea}, 33, Division::Sequence);
+    Board s({kArea}, 33, Division::Sequence);
     s.set_fresh_cost(5);
     s.set_jump_cost(2);
     for (int k = 1; k <= 3; k++)
@@ -454,7 +478,7 @@ TEST(Schedule, SplitTakesTheNearestRangeAhead)
     // undivided, a jump of 2 frames is worth (7 - 1) / 2 = 3), slave 3 has 22 and 23 (9
     // undivided, worth 4). Slave 1 takes the 3 at the end of the nearer range, so that its
     // jump to slave 3's range later is forward again.
-    Schedule s({kArea}, 33, Division::Sequence);
+    Board s({kArea}, 33, Division::Sequence);
     s.set_fresh_cost(5);
     s.set_jump_cost(2);
     for (int k = 1; k <= 3; k++)
@@ -474,7 +498,7 @@ TEST(Schedule, FasterNewcomerTakesMore)
     // fc, a fresh frame costs 5 coherent ones; the newcomer renders twice as fast: of 9
     // undivided frames it takes (9 * 2 - 4 * 1) / 3 = 4 (it finishes after 8/2 = 4 frame
     // times, the range's slave after 5).
-    Schedule s({kArea}, 11, Division::Sequence);
+    Board s({kArea}, 11, Division::Sequence);
     s.set_fresh_cost(5);
     s.add_slave(1, 100);
     s.plan(1, 1);
@@ -489,7 +513,7 @@ TEST(Schedule, FasterNewcomerTakesMore)
 
 TEST(Schedule, DeadSlaveOrphans)
 {
-    Schedule s(make_tiles(kArea, 80), 4, Division::Frame);
+    Board s(make_tiles(kArea, 80), 4, Division::Frame);
     s.add_slave(1, 100);
     s.add_slave(2, 200);
     s.plan(1);
@@ -506,7 +530,7 @@ TEST(Schedule, DeadSlaveOrphans)
 
 TEST(Schedule, FailureRetriesElsewhere)
 {
-    Schedule s({kArea}, 2, Division::Sequence);
+    Board s({kArea}, 2, Division::Sequence);
     s.add_slave(1, 100);
     s.add_slave(2, 100);
     s.add_slave(3, 300);
@@ -527,7 +551,7 @@ TEST(Schedule, FailureRetriesElsewhere)
 
 TEST(Schedule, StragglerDuplicate)
 {
-    Schedule s({kArea}, 1, Division::Sequence);
+    Board s({kArea}, 1, Division::Sequence);
     s.add_slave(1, 100);
     s.add_slave(2, 100);
     s.plan(1);
@@ -542,12 +566,12 @@ TEST(Schedule, StragglerDuplicate)
     // The first result wins; the other copy has nothing left and is cancelled.
     EXPECT_TRUE(deliver(s, *b, &cancel) == std::vector<int>{0});
     EXPECT_TRUE(cancel.size() == 1 && cancel[0].id == aid);
-    EXPECT_TRUE(s.finished());
+    EXPECT_TRUE(s.all_done());
 }
 
 TEST(Schedule, QueuedJobIsNotAStraggler)
 {
-    Schedule s({kArea}, 2, Division::Sequence);
+    Board s({kArea}, 2, Division::Sequence);
     s.add_slave(1, 100);
     s.plan(1);
     const Job *a = s.next_job(1, 0, true);
@@ -568,7 +592,7 @@ TEST(Schedule, QueuedJobIsNotAStraggler)
 
 TEST(Schedule, Repair)
 {
-    Schedule s(make_tiles(kArea, 80), 4, Division::Frame);
+    Board s(make_tiles(kArea, 80), 4, Division::Frame);
     s.add_slave(1, 100);
     s.plan(1);
     EXPECT_TRUE(s.repair() == 0);     // the plan covers everything
@@ -583,7 +607,7 @@ static void simulate(Division div, unsigned seed, bool cheap_moves = false)
     std::vector<Rect> tiles = div == Division::Sequence ? std::vector<Rect>{kArea}
                                                         : make_tiles(kArea, 40);
     const int nframes = 23;
-    Schedule s(tiles, nframes, div);
+    Board s(tiles, nframes, div);
     s.set_cheap_moves(cheap_moves);
     std::map<int, double> speed;
     for (int slave = 1; slave <= 3; slave++) {
@@ -594,7 +618,7 @@ static void simulate(Division div, unsigned seed, bool cheap_moves = false)
     std::map<int, std::vector<Job>> held;
     int next_slave = 4, steps = 0, max_partial = 0;
     std::map<std::pair<int, int>, int> delivered;
-    while (!s.finished() && steps++ < 20000) {
+    while (!s.all_done() && steps++ < 20000) {
         for (auto &kv : speed) {
             int slave = kv.first;
             while (held[slave].size() < 2) {
@@ -636,7 +660,7 @@ static void simulate(Division div, unsigned seed, bool cheap_moves = false)
             delivered[{j.index, t}]++;
         max_partial = std::max(max_partial, partial_frames(s));
     }
-    EXPECT_TRUE(s.finished());
+    EXPECT_TRUE(s.all_done());
     EXPECT_TRUE(int(delivered.size()) == nframes * s.tiles());
     for (auto &kv : delivered)
         EXPECT_TRUE(kv.second == 1);
