@@ -782,7 +782,7 @@ def test_progress_lines_and_summary(coordinator, tmp_path):
 
 
 def test_slave_renderers_run_as_batch_tasks(coordinator, tmp_path):
-    # A slave's renderer runs under SCHED_BATCH (coordinator/renderer.cpp says why); the
+    # A slave's renderer runs under SCHED_BATCH (coordinator/slave/renderer.cpp says why); the
     # master's probes, which a user waits for, keep the usual policy. A renderer that records
     # its policy and its role, then runs the real one.
     log = tmp_path / "policies.txt"
