@@ -191,7 +191,11 @@ def test_summary_and_stats_of_a_run(coordinator, tmp_path):
     assert "retried" in r.stderr
     # Per-frame times, and what frame coherence saved (estimated from the first frames).
     assert all(f["time"] > 0 for f in s["frames"])
-    assert re.search(r"frame time .*median [\d.]+ s.*slowest [\d.]+ s \(frame \d+\)", r.stderr)
+    assert re.search(r"frame time: median [\d.]+ s.*slowest [\d.]+ s \(frame \d+\)", r.stderr)
+    # The summary fits a terminal of 80 columns.
+    lines = r.stderr.splitlines()
+    start = next(i for i, line in enumerate(lines) if "frame(s) rendered" in line)
+    assert all(len(line) < 80 for line in lines[start:]), "\n".join(lines[start:])
     saved = s["fc_saved"]
     assert saved and saved["rays_without_fc"] > saved["rays_spent"] > 0, saved
     assert "frame coherence saved about" in r.stderr, r.stderr

@@ -17,6 +17,7 @@ const char *tag_name(int tag)
     case FC_CANCEL: return "FC_CANCEL";
     case FC_PING: return "FC_PING";
     case FC_QUIT: return "FC_QUIT";
+    case FC_ABANDON: return "FC_ABANDON";
     case FC_TASKEXIT: return "FC_TASKEXIT";
     case FC_HOSTDEL: return "FC_HOSTDEL";
     case FC_HOSTADD: return "FC_HOSTADD";
@@ -199,11 +200,13 @@ bool unpack(Progress &m) { return Unpacker().i(m.job).i(m.frame).ok; }
 
 int pack(const Failure &m)
 {
-    return Packer().i(m.job).i(m.frame).i(m.scene_error).i(m.status).s(m.message).status;
+    return Packer().i(m.job).i(m.frame).i(m.scene_error).i(m.status).i(m.abandoned).s(m.message)
+        .status;
 }
 bool unpack(Failure &m)
 {
-    return Unpacker().i(m.job).i(m.frame).i(m.scene_error).i(m.status).s(m.message).ok;
+    return Unpacker().i(m.job).i(m.frame).i(m.scene_error).i(m.status).i(m.abandoned).s(m.message)
+        .ok;
 }
 
 int pack_int(int v) { return Packer().i(v).status; }

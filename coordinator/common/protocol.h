@@ -27,6 +27,7 @@ enum Tag {
     FC_CANCEL = 110,
     FC_PING = 111,
     FC_QUIT = 112,
+    FC_ABANDON = 113,
     FC_TASKEXIT = 120,
     FC_HOSTDEL = 121,
     FC_HOSTADD = 122,
@@ -98,7 +99,9 @@ struct Failure {
     int frame = 0;
     int scene_error = 0;                // 1: POV-Ray rejected the scene (fatal)
     int status = 0;                     // wait status of POV-Ray, or -1 for a slave-side error
-    std::string message;                // POV-Ray's error lines (file, line, message)
+    int abandoned = 0;                  // 1: the master abandoned the job (FC_ABANDON)
+    std::string message;                // POV-Ray's error lines (file, line, message), or its
+                                        // last console lines for an abandoned job
 };
 
 // Each message has one pack function (initsend + pack, returns the pvm status of the last
@@ -116,7 +119,7 @@ int pack(const Progress &m);
 bool unpack(Progress &m);
 int pack(const Failure &m);
 bool unpack(Failure &m);
-int pack_int(int v);        // FC_CANCEL
+int pack_int(int v);        // FC_CANCEL, FC_ABANDON
 bool unpack_int(int &v);
 int pack_empty();           // FC_PING, FC_QUIT
 

@@ -6,6 +6,7 @@
 // (a few times per host) and leaves out hosts whose slaves keep failing.
 #pragma once
 
+#include <algorithm>
 #include <map>
 #include <string>
 #include <vector>
@@ -22,8 +23,13 @@ struct SlaveInfo {
     std::string host;
     SlaveState state = SlaveState::Starting;
     double spawned = 0, last_msg = 0, last_ping = 0;
+    double last_given = 0;      // when it was last sent work: silence counts from then too
     bool killed = false;        // we asked PVM to kill it
     int frame = 0;              // from FC_PROGRESS: the frame it renders
+
+    // Seconds of its own silence at time t: since it last spoke or was last given work (an
+    // idle slave handed work is not judged by its idle time, when it had nothing to say).
+    double silent_for(double t) const { return t - std::max(last_msg, last_given); }
 };
 
 struct HostInfo {

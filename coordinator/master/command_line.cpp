@@ -9,6 +9,7 @@
 #include <set>
 
 #include "text.h"
+#include "virtual_machine.h"
 
 namespace fc {
 
@@ -41,11 +42,15 @@ const char *const kHelp =
     "  --private               always start a private pvmd, even if one runs\n"
     "  --no-fc                 render without frame coherence\n"
     "  --no-duplicates         idle slaves never duplicate running work (stragglers)\n"
+    "  --keep-going            render every frame that can be rendered: a frame that fails\n"
+    "                          (a scene error, or failing or hanging on two hosts) is listed\n"
+    "                          at the end instead of stopping the render (exit status 1)\n"
     "  --no-local-slaves       no slaves on the master's own host (it only assembles, as\n"
     "                          in the paper; e.g. to emulate a cluster of namespace hosts)\n"
     "  --povray PATH           renderer, povray-fc (default: next to fc-master, then PATH)\n"
     "  --slave PATH            fc-slave binary (default: next to fc-master)\n"
-    "  --timeout SECONDS       a slave silent this long is presumed dead (default 120)\n"
+    "  --timeout SECONDS       a slave silent this long since it was given work is presumed\n"
+    "                          dead (default 120); also a job's deadline until one finished\n"
     "  --nice N                run the renderer with this nice increment (default 0)\n"
     "  --progress SECONDS      interval of progress lines when stderr is no terminal (10)\n"
     "  --quiet                 no progress output\n"
@@ -55,11 +60,14 @@ const char *const kHelp =
     "  --stats FILE            write per-frame and per-job statistics as JSON\n"
     "  --help                  show this help\n";
 
+// A usage error: the parse stops at the first.
+struct UsageError {
+    std::string message;
+};
+
 [[noreturn]] void usage_error(const std::string &msg)
 {
-    fprintf(stderr, "fc-master: %s\n%s\nTry 'fc-master --help' for more information.\n",
-            msg.c_str(), kUsage);
-    exit(2);
+    throw UsageError{msg};
 }
 
 bool parse_int(const std::string &s, int lo, int hi, int &v)
@@ -85,19 +93,29 @@ bool parse_seconds(const std::string &s, double &v)
 
 } // namespace
 
-Options parse_options(int argc, char **argv)
+namespace {
+
+void set_output(Options &o, const std::string &option, const std::string &dir)
 {
-    Options o;
-    for (int i = 1; i < argc; i++) {
-        std::string a = argv[i];
+    // A second -o would take the scene for a directory and leave no scene.
+    if (!o.output.empty())
+        usage_error(option + " given twice (" + o.output + ", then " + dir + ")");
+    o.output = dir;
+}
+
+void parse(const std::vector<std::string> &args, Options &o, bool &help)
+{
+    size_t argc = args.size();
+    for (size_t i = 0; i < argc; i++) {
+        std::string a = args[i];
         if (a == "--help") {
-            printf("%s\n\n%s", kUsage, kHelp);
-            exit(0);
+            help = true;
+            return;
         }
         if (a == "-o") {
             if (i + 1 >= argc)
                 usage_error("-o needs a directory");
-            o.output = argv[++i];
+            set_output(o, "-o", args[++i]);
             continue;
         }
         if (!starts_with(a, "--")) {
@@ -114,7 +132,7 @@ Options parse_options(int argc, char **argv)
         }
         static const std::set<std::string> flags = {"--private", "--no-fc", "--no-duplicates",
                                                     "--no-local-slaves", "--quiet", "--force",
-                                                    "--no-preview"};
+                                                    "--no-preview", "--keep-going"};
         static const std::set<std::string> valued = {
             "--output", "--division", "--tile", "--ranges", "--slaves", "--hostfile", "--pvmd-name",
             "--povray", "--slave", "--timeout", "--nice", "--progress", "--stats"};
@@ -128,6 +146,7 @@ Options parse_options(int argc, char **argv)
             else if (name == "--quiet") o.quiet = true;
             else if (name == "--force") o.force = true;
             else if (name == "--no-preview") o.preview = false;
+            else if (name == "--keep-going") o.keep_going = true;
             continue;
         }
         if (!valued.count(name))
@@ -135,10 +154,10 @@ Options parse_options(int argc, char **argv)
         if (!has_value) {
             if (i + 1 >= argc)
                 usage_error("option " + name + " needs a value");
-            value = argv[++i];
+            value = args[++i];
         }
         if (name == "--output") {
-            o.output = value;
+            set_output(o, "--output", value);
         } else if (name == "--division") {
             if (!parse_division(value, o.division))
                 usage_error("--division must be sequence, frame or hybrid, not '" + value + "'");
@@ -163,6 +182,9 @@ Options parse_options(int argc, char **argv)
             fclose(f);
             if (!readable)
                 usage_error("--hostfile " + value + ": " + strerror(e));
+            // Nor is a host file without hosts (all comments, or empty).
+            if (hostfile_hosts(value).empty())
+                usage_error("--hostfile " + value + " names no host");
             o.hostfile = value;
         } else if (name == "--pvmd-name") {
             o.pvmd_name = value;
@@ -192,6 +214,38 @@ Options parse_options(int argc, char **argv)
     // parses then overlap the others' tracing.
     if (o.slaves == 0 && o.fc)
         o.slaves = 1;
+}
+
+} // namespace
+
+bool parse_command_line(const std::vector<std::string> &args, Options &o, bool &help,
+                        std::string &err)
+{
+    o = Options();
+    help = false;
+    try {
+        parse(args, o, help);
+    } catch (const UsageError &e) {
+        err = e.message;
+        return false;
+    }
+    return true;
+}
+
+Options parse_options(int argc, char **argv)
+{
+    Options o;
+    bool help = false;
+    std::string err;
+    if (!parse_command_line(std::vector<std::string>(argv + 1, argv + argc), o, help, err)) {
+        fprintf(stderr, "fc-master: %s\n%s\nTry 'fc-master --help' for more information.\n",
+                err.c_str(), kUsage);
+        exit(2);
+    }
+    if (help) {
+        printf("%s\n\n%s", kUsage, kHelp);
+        exit(0);
+    }
     return o;
 }
 

@@ -19,6 +19,7 @@ struct Options {
     bool force_private = false;
     bool fc = true;
     bool duplicates = true;
+    bool keep_going = false;    // a frame that fails is listed at the end, the others render
     bool local_slaves = true;   // false: the master's own host renders nothing
     std::string povray;
     std::string slave;
@@ -32,8 +33,13 @@ struct Options {
     std::vector<std::string> pov;   // POV-Ray options, in order
 };
 
-// Parse argv. Prints help and exits 0 for --help; prints a one-line error with the usage and
-// exits 2 for a bad option.
+// Parse the arguments (without the program's name) into o; help: --help was asked. False with
+// err (one line naming the option) on a usage error.
+bool parse_command_line(const std::vector<std::string> &args, Options &o, bool &help,
+                        std::string &err);
+
+// parse_command_line for main: prints the help and exits 0 for --help; prints the error with
+// the usage and exits 2 for a bad option.
 Options parse_options(int argc, char **argv);
 
 } // namespace fc

@@ -54,12 +54,21 @@ void FrameBook::skip(int index)
     skipped_++;
 }
 
-void FrameBook::give_up(int index)
+void FrameBook::give_up(int index, const std::string &why)
 {
     if (state_[size_t(index)] == State::GivenUp)
         return;
     no_more_work(index, State::GivenUp);
+    given_up_why_[index] = why;
     given_up_++;
+}
+
+std::vector<std::pair<int, std::string>> FrameBook::given_up() const
+{
+    std::vector<std::pair<int, std::string>> out;
+    for (auto &kv : given_up_why_)
+        out.push_back({frames_[size_t(kv.first)], kv.second});
+    return out;
 }
 
 bool FrameBook::deliver(int index, FrameResult &r, std::vector<int> &fresh, std::string &err)

@@ -57,8 +57,21 @@ public:
     bool start(int index);
     // A Pre_Frame_Command skipped frame index i: it gets no file.
     void skip(int index);
-    // Frame index i is given up (it failed or hung on every host that tried it): no file.
-    void give_up(int index);
+
+    // What went wrong with a frame while it was rendered: failures (not the scene's) and
+    // stalls (liveness.h), the hosts they happened on, and POV-Ray's last words.
+    struct Trouble {
+        int failures = 0, stalls = 0;
+        std::set<std::string> hosts;
+        std::string last_words;
+    };
+    Trouble &trouble(int index) { return trouble_[index]; }
+
+    // Frame index i is given up (it failed or hung on the hosts that tried it, or the scene
+    // fails there and --keep-going goes on): no file; why says so.
+    void give_up(int index, const std::string &why);
+    // The frames given up, in frame order, with why.
+    std::vector<std::pair<int, std::string>> given_up() const;
 
     // A result of frame index i: its tiles not done before are marked and their pixels stored
     // (appended to fresh); the frame is complete when its last cell arrives. False with err
@@ -104,6 +117,8 @@ private:
     std::vector<char> started_;
     std::map<int, Pixels> pixels_;              // frames being assembled or complete
     std::set<int> complete_;                    // complete, not written yet
+    std::map<int, Trouble> trouble_;
+    std::map<int, std::string> given_up_why_;
     int resumed_ = 0, written_ = 0, skipped_ = 0, given_up_ = 0;
 };
 

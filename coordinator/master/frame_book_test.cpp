@@ -141,12 +141,13 @@ TEST(FrameBook, FramesThatNeedNoRenderingHaveTheirCellsDone)
     Shelf s(3);
     FrameBook &b = *s.book;
     b.resumed(0);
-    b.give_up(1);
-    b.give_up(1);
+    b.give_up(1, "it hangs");
+    b.give_up(1, "again");
     EXPECT_TRUE(b.cells().frame_done(0) && b.cells().frame_done(1));
     EXPECT_FALSE(b.cells().frame_done(2));
     EXPECT_EQ(b.resumed_count(), 1);
     EXPECT_EQ(b.given_up_count(), 1);
+    EXPECT_EQ(b.given_up(), (std::vector<std::pair<int, std::string>>{{2, "it hangs"}}));
     EXPECT_TRUE(b.start(2));
     EXPECT_FALSE(b.start(2));           // its Pre_Frame_Command runs once
 }

@@ -120,6 +120,7 @@ void Master::send_job(SlaveInfo &s, const Job &job)
     for (int t : job.tiles)
         m.rects.push_back(sched_->tile(t));
     m.threads = cluster_.threads_for(s);
+    s.last_given = now();
     int r = send_msg(s.tid, FC_JOB, m);
     debug_log("FC_JOB %d frame %d, %zu tile(s) to t%x", job.id, m.frame, job.tiles.size(),
               unsigned(s.tid));
@@ -251,9 +252,14 @@ void Master::on_frame(int src)
     cost.rays = fr.rays;
     cost.fresh = fr.fresh != 0;
     costs_.note_result(cost);
+    // How long the job took since its slave began it: what its host's deadlines learn from.
+    const Job *job = sched_->find(fr.job);
+    if (job && job->rendering >= 0 && s)
+        liveness_.job_took(src, s->dtid, cost.pixels, now() - job->rendering);
     std::vector<Job> cancel;
     sched_->job_done(fr.job, idx, cancel, now());
     cancel_jobs(cancel);
+    sched_->resume(src);
     // The slave's next job goes out now; the receive loop writes the frame after this
     // (write_complete_frames), since writing may wait.
     dispatch();
@@ -321,6 +327,9 @@ void Master::on_progress(int src)
         return;
     s->last_msg = now();
     s->frame = p.frame;
+    // Frame -1: it dropped a cancelled job and waits for work (a stalled slave's word).
+    if (sched_->resume(src))
+        dispatch();
 }
 
 void Master::on_fail(int src)
@@ -332,6 +341,12 @@ void Master::on_fail(int src)
     if (s)
         s->last_msg = now();
     std::string host = s ? s->host : "?";
+    if (f.abandoned) {
+        on_abandoned(f, host);
+        if (sched_->resume(src))
+            dispatch();
+        return;
+    }
     std::string what = f.status == -1 ? "slave error" : describe_status(f.status);
     last_failure_ = "on " + host + ": " + first_line(f.message);
     if (f.job < 0) {
@@ -345,24 +360,45 @@ void Master::on_fail(int src)
         return;
     }
     stats_.job_ended(f.job, "failed");
+    int fi = book_->index_of(f.frame);
     if (f.scene_error) {
-        fatal(strf("rendering failed on host %s (frame %d, %s):\n%s", host.c_str(), f.frame,
-                   what.c_str(), f.message.c_str()));
+        std::string why = strf("rendering failed on host %s (frame %d, %s):\n%s", host.c_str(),
+                               f.frame, what.c_str(), f.message.c_str());
+        if (opt_.keep_going && fi >= 0) {
+            sched_->job_failed(f.job, now());
+            give_up_frame(fi, why);
+        } else {
+            fatal(why);
+        }
         return;
     }
-    // Not the scene's fault: try the job elsewhere, leave out a host that keeps failing.
-    int fi = book_->index_of(f.frame);
+    // Not the scene's fault: try the job elsewhere, leave out a host that keeps failing. A
+    // frame that failed on two hosts (or kRetries times on one) is given up.
     if (fi >= 0)
         stats_.frame_retried(fi);
     int failures = sched_->job_failed(f.job, now());
+    sched_->resume(src);
     stats_.host_failed(host);
-    if (failures >= Schedule::kRetries) {
-        fatal(strf("frame %d failed %d times, last on host %s (%s):\n%s", f.frame, failures,
-                   host.c_str(), what.c_str(), f.message.c_str()));
-        return;
+    if (fi >= 0) {
+        FrameBook::Trouble &trouble = book_->trouble(fi);
+        trouble.failures++;
+        trouble.hosts.insert(host);
+        trouble.last_words = f.message;
+        if (trouble.hosts.size() >= 2 || failures >= Schedule::kRetries) {
+            std::string hosts;
+            for (const std::string &h : trouble.hosts)
+                hosts += (hosts.empty() ? "" : ", ") + h;
+            give_up_frame(fi, strf("frame %d failed %d times, on host%s %s, last (%s):\n%s",
+                                   f.frame, std::max(failures, trouble.failures),
+                                   trouble.hosts.size() > 1 ? "s" : "", hosts.c_str(),
+                                   what.c_str(), f.message.c_str()));
+            if (failed_)
+                return;
+        }
     }
-    warn(strf("frame %d failed on host %s (%s): %s; trying again", f.frame, host.c_str(),
-              what.c_str(), first_line(f.message).c_str()));
+    if (fi < 0 || book_->state(fi) != FrameBook::State::GivenUp)
+        warn(strf("frame %d failed on host %s (%s): %s; trying again", f.frame, host.c_str(),
+                  what.c_str(), first_line(f.message).c_str()));
     if (s && cluster_.host_failed(*s))
         leave_out_host(s->dtid, first_line(f.message));
     dispatch();
@@ -472,7 +508,8 @@ void Master::check_timeouts()
             continue;
         bool has_work = s.state == SlaveState::Starting || sched_->live_jobs(s.tid) > 0;
         // A message waiting in our queue means it spoke: we were the slow one.
-        if (has_work && t - s.last_msg > opt_.timeout && pvm_probe(s.tid, -1) <= 0) {
+        double silent = s.silent_for(t);
+        if (has_work && silent > opt_.timeout && pvm_probe(s.tid, -1) <= 0) {
             // Its work is re-queued right away. On this host SIGKILL also ends a stopped
             // process. A remote one is only abandoned: pvm_sendsig waits for the remote pvmd,
             // which blocks until PVM declares a crashed host dead (minutes); if it lives, it
@@ -481,7 +518,7 @@ void Master::check_timeouts()
             bool local = s.dtid == cluster_.my_host();
             if (local)
                 pvm_sendsig(s.tid, SIGKILL);
-            slave_gone(s, strf("was silent for %.0f s and is %s", t - s.last_msg,
+            slave_gone(s, strf("was silent for %.0f s and is %s", silent,
                                local ? "stopped" : "abandoned"), false);
             continue;
         }
@@ -589,9 +626,11 @@ void Master::shutdown_slaves()
         SlaveInfo *s = cluster_.slave(tid);
         if (s->state == SlaveState::Gone)
             continue;
-        if (s->dtid == cluster_.my_host())
+        if (s->dtid == cluster_.my_host() && !sched_->suspended(tid))
             waiting.insert(tid);
-        else
+        else if (s->dtid == cluster_.my_host())
+            pvm_sendsig(tid, SIGKILL);     // it stopped answering: no use waiting for it
+        if (!waiting.count(tid))
             s->state = SlaveState::Gone;
     }
     while (!waiting.empty() && now() < deadline) {
@@ -621,6 +660,10 @@ void Master::tick()
     if (!planned_)
         dispatch();
     check_timeouts();
+    check_stalls();
+    conclude_hangs(false);
+    if (failed_)
+        return;
     flush_preview(false);
     if (cluster_.live_slaves() == 0 && !book_->all_rendered() && !failed_) {
         fatal("no slave is left to render the remaining frames" +
@@ -685,6 +728,9 @@ int Master::loop()
         return exit_code_ != 0 ? exit_code_ : 1;
     report_.clear_line();
     shutdown_slaves();
+    // --keep-going rendered what it could; frames given up make the run a failure.
+    if (exit_code_ == 0 && book_->given_up_count() > 0)
+        exit_code_ = 1;
     return exit_code_;
 }
 

@@ -10,8 +10,11 @@
 
 #include <signal.h>
 
+#include <map>
 #include <memory>
+#include <set>
 #include <string>
+#include <vector>
 
 #include "cluster.h"
 #include "command_line.h"
@@ -19,6 +22,7 @@
 #include "frame_book.h"
 #include "frame_encoder.h"
 #include "frame_files.h"
+#include "liveness.h"
 #include "output_dir.h"
 #include "preview.h"
 #include "render_plan.h"
@@ -36,7 +40,7 @@ void on_signal(int sig);
 class Master {
 public:
     explicit Master(const Options &o)
-        : opt_(o), report_(o.progress, o.quiet), stats_(!o.stats.empty())
+        : opt_(o), report_(o.progress, o.quiet), stats_(!o.stats.empty()), liveness_(o.timeout)
     {
     }
     // The whole render; returns the exit status.
@@ -72,6 +76,15 @@ private:
     void check_timeouts();
     void tick();
 
+    // Liveness (master_liveness.cpp): stalled jobs, frames that hang or keep failing.
+    void check_stalls();
+    void job_stalled(const Job &job, double seconds, double deadline);
+    void frame_hangs(int index);
+    void abandon(const Job &job);
+    void on_abandoned(const Failure &f, const std::string &host);
+    void conclude_hangs(bool all);
+    void give_up_frame(int index, const std::string &why);
+
     // What the user sees (master.cpp).
     void warn(const std::string &message);
     void progress();
@@ -95,6 +108,15 @@ private:
     Cluster cluster_;
     Preview preview_;
     RunStats stats_;
+    Liveness liveness_;
+    // Frames found hanging: their jobs are abandoned, and POV-Ray's last words awaited.
+    struct Hang {
+        std::set<int> jobs;             // abandoned jobs whose last words are awaited
+        std::vector<std::string> hosts;
+        std::string words;
+        double until = 0;               // no longer
+    };
+    std::map<int, Hang> hangs_;         // by frame index
 
     bool planned_ = false;              // the frames are cut into ranges
     double start_ = 0, spawn_time_ = 0, next_tick_ = 0;

@@ -99,6 +99,8 @@ RunFacts Master::facts(bool ok, double elapsed) const
     f.rendered = book_ ? book_->written_count() : 0;
     f.resumed = book_ ? book_->resumed_count() : 0;
     f.skipped = book_ ? book_->skipped_count() : 0;
+    if (book_)
+        f.given_up = book_->given_up();
     f.savings = costs_.savings();
     return f;
 }

@@ -196,53 +196,111 @@ void Report::clear_line()
     lines_open_ = 0;
 }
 
+namespace {
+
+// Text cut into lines of at most kSummaryColumns - 1 columns at spaces; lines after the first
+// are indented by `indent` spaces.
+std::string wrapped(const std::string &text, size_t indent)
+{
+    const size_t room = size_t(Report::kSummaryColumns - 1);
+    size_t pos = std::min(text.size(), text.find_first_not_of(' '));
+    std::string out, line = text.substr(0, pos);
+    bool first_word = true;     // of the line
+    while (pos < text.size()) {
+        size_t end = std::min(text.size(), text.find(' ', pos));
+        std::string word = text.substr(pos, end - pos);
+        pos = end + 1;
+        if (word.empty())
+            continue;
+        if (!first_word && line.size() + 1 + word.size() > room) {
+            out += line + "\n";
+            line = std::string(indent, ' ');
+            first_word = true;
+        }
+        line += (first_word ? "" : " ") + word;
+        first_word = false;
+    }
+    return out + line + "\n";
+}
+
+// Seconds with the digits that matter.
+std::string seconds(double s)
+{
+    return s < 10 ? strf("%.2f s", s) : s < 100 ? strf("%.1f s", s) : strf("%.0f s", s);
+}
+
+} // namespace
+
 std::string Report::summary(const RunSummary &r) const
 {
-    std::string s;
+    std::string head;
     if (r.ok) {
-        s = strf("fc-master: %d frame(s) rendered", r.rendered);
+        head = strf("fc-master: %d frame(s) rendered", r.rendered);
         if (r.resumed)
-            s += strf(", %d already present", r.resumed);
+            head += strf(", %d already present", r.resumed);
         if (r.skipped)
-            s += strf(", %d skipped by Pre_Frame_Command", r.skipped);
+            head += strf(", %d skipped by Pre_Frame_Command", r.skipped);
+    } else if (!r.given_up.empty() && r.error.empty()) {
+        head = strf("fc-master: %d frame(s) rendered, %d already present, %zu failed", r.rendered,
+                    r.resumed, r.given_up.size());
     } else {
-        s = strf("fc-master: %s with %d of %d frame(s) done (%d rendered, %d already present), "
-                 "%d missing", r.error.empty() ? "stopped" : "failed", r.rendered + r.resumed,
-                 r.total, r.rendered, r.resumed, r.total - r.rendered - r.resumed - r.skipped);
+        head = strf("fc-master: %s with %d of %d frame(s) done (%d rendered, %d already "
+                    "present), %d missing", r.error.empty() ? "stopped" : "failed",
+                    r.rendered + r.resumed, r.total, r.rendered, r.resumed,
+                    r.total - r.rendered - r.resumed - r.skipped);
     }
-    s += strf(" in %s, %s division, %zu host(s) of a %s virtual machine\n",
-              duration(r.elapsed).c_str(), r.division.c_str(), r.hosts.size(),
-              r.virtual_machine.c_str());
+    head += strf(" in %s, %s division, %zu host(s) of a %s virtual machine",
+                 duration(r.elapsed).c_str(), r.division.c_str(), r.hosts.size(),
+                 r.virtual_machine.c_str());
+    std::string s = wrapped(head, 2);
+    if (!r.given_up.empty()) {
+        std::string list;
+        for (auto &f : r.given_up)
+            list += (list.empty() ? "" : ", ") + std::to_string(f.first);
+        s += wrapped(strf("  frames without a file (their messages above): %s", list.c_str()), 4);
+    }
     if (!r.frame_seconds.empty()) {
         std::vector<double> sorted = r.frame_seconds;
         std::sort(sorted.begin(), sorted.end());
         size_t slowest = size_t(std::max_element(r.frame_seconds.begin(), r.frame_seconds.end()) -
                                 r.frame_seconds.begin());
-        s += strf("  frame time (parse + trace, all its jobs): median %.2f s, fastest %.2f s, "
-                  "slowest %.2f s (frame %d)\n", sorted[sorted.size() / 2], sorted.front(),
-                  sorted.back(), r.frame_numbers[slowest]);
+        s += wrapped(strf("  frame time: median %s, fastest %s, slowest %s (frame %d); parse and "
+                          "trace, all its jobs", seconds(sorted[sorted.size() / 2]).c_str(),
+                          seconds(sorted.front()).c_str(), seconds(sorted.back()).c_str(),
+                          r.frame_numbers[slowest]), 4);
     }
     if (r.retried || r.lost)
-        s += strf("  %d frame(s) retried after a failed or lost job, %d lost\n", r.retried, r.lost);
+        s += wrapped(strf("  %d frame(s) retried after a failed or lost job, %d lost", r.retried,
+                          r.lost), 4);
     if (r.savings.known && r.savings.rays_full > 0) {
         const Savings &v = r.savings;
         double rays = std::max(0.0, v.rays_full - v.rays_spent);
-        s += strf("  frame coherence saved about %.0f%% of the rays: %.3g of %.3g million traced\n"
-                  "    (estimated from each renderer's first frame, traced in full); trace time "
-                  "%.1f s, %.1f s at\n    the first frames' rate (an upper bound: a first frame "
-                  "also records every ray)\n",
-                  100 * rays / v.rays_full, v.rays_spent / 1e6, v.rays_full / 1e6,
-                  v.seconds_spent, v.seconds_full);
+        s += wrapped(strf("  frame coherence saved about %.0f%% of the rays: %.3g of %.3g million "
+                          "traced (estimated from each renderer's first frame, traced in full); "
+                          "trace time %.1f s, %.1f s at the first frames' rate (an upper bound: "
+                          "a first frame also records every ray)",
+                          100 * rays / v.rays_full, v.rays_spent / 1e6, v.rays_full / 1e6,
+                          v.seconds_spent, v.seconds_full), 4);
     }
-    s += strf("  %-20s %6s %6s %7s %7s %14s %10s %16s\n", "host", "slaves", "jobs", "frames",
-              "tiles", "rays", "busy", "throughput");
+    // The host table, 79 columns: a longer host name gets a line of its own.
+    const char *row = "  %-16s %6s %5s %6s %6s %11s %8s %12s\n";
+    s += strf(row, "host", "slaves", "jobs", "frames", "tiles", "rays", "busy", "throughput");
     for (auto &kv : r.hosts) {
         const HostStat &h = kv.second;
         double pps = r.elapsed > 0 ? h.pixels / r.elapsed : 0;
         std::string tput = pps >= 1e6 ? strf("%.1f Mpx/s", pps / 1e6) : strf("%.0f kpx/s", pps / 1e3);
-        s += strf("  %-20s %6d %6d %7d %7d %14.0f %10s %16s%s\n", h.name.c_str(), h.slaves, h.jobs,
-                  h.frames, h.tiles, h.rays, duration(h.busy).c_str(), tput.c_str(),
-                  h.excluded ? "  (left out after failures)" : "");
+        std::string name = h.name;
+        if (name.size() > 16) {
+            s += "  " + name + "\n";
+            name.clear();
+        }
+        std::string rays = h.rays < 1e10 ? strf("%.0f", h.rays) : strf("%.3g", h.rays);
+        s += strf(row, name.c_str(), std::to_string(h.slaves).c_str(),
+                  std::to_string(h.jobs).c_str(), std::to_string(h.frames).c_str(),
+                  std::to_string(h.tiles).c_str(), rays.c_str(), duration(h.busy).c_str(),
+                  tput.c_str());
+        if (h.excluded)
+            s += "    (left out after failures)\n";
     }
     return s;
 }

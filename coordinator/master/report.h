@@ -37,6 +37,9 @@ struct ProgressState {
 
 class Report {
 public:
+    // The end summary fits a terminal of this many columns (lines are shorter).
+    static const int kSummaryColumns = 80;
+
     // interval: seconds between plain progress lines (stderr not a terminal).
     Report(double interval, bool quiet);
 

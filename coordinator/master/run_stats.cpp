@@ -167,7 +167,8 @@ RunSummary RunStats::summary(const RunFacts &facts) const
             r.frame_seconds.push_back(f.seconds);
             r.frame_numbers.push_back(f.frame);
         }
-    r.lost = facts.ok ? 0 : r.total - r.rendered - r.resumed - r.skipped;
+    r.given_up = facts.given_up;
+    r.lost = facts.ok ? 0 : r.total - r.rendered - r.resumed - r.skipped - int(r.given_up.size());
     r.savings = facts.savings;
     return r;
 }
@@ -206,6 +207,7 @@ std::string RunStats::json(const RunFacts &facts) const
     j += strf("  \"frames_retried\": %d,\n  \"frames_lost\": %d,\n  \"frames_skipped\": %d,\n",
               sum.retried, sum.lost, sum.skipped);
     j += "  \"error\": " + (facts.ok ? std::string("null") : json_string(facts.error)) + ",\n";
+    j += strf("  \"frames_failed\": %zu,\n", facts.given_up.size());
     const Savings &v = facts.savings;
     if (v.known)
         j += strf("  \"fc_saved\": {\"rays_spent\": %.0f, \"rays_without_fc\": %.0f, "
@@ -224,10 +226,16 @@ std::string RunStats::json(const RunFacts &facts) const
         std::string hosts_json;
         for (size_t k = 0; k < host_list.size(); k++)
             hosts_json += (k ? ", " : "") + json_string(host_list[k]);
+        std::string failed = "null";
+        for (auto &g : facts.given_up)
+            if (g.first == f.frame)
+                failed = json_string(g.second);
         j += strf("    {\"frame\": %d, \"file\": %s, \"resumed\": %s, \"retried\": %s, "
+                  "\"failed\": %s, "
                   "\"host\": %s, \"hosts\": [%s], \"rays\": %.0f, \"time\": %.3f, \"parses\": %d, "
                   "\"finished_at\": %.3f, \"tiles\": [",
                   f.frame, json_string(f.file).c_str(), json_bool(f.resumed), json_bool(f.retried),
+                  failed.c_str(),
                   host_list.empty() ? "null" : json_string(host_list[0]).c_str(),
                   hosts_json.c_str(), f.rays, f.seconds, f.parses, f.finished_at);
         for (size_t k = 0; k < f.cells.size(); k++) {

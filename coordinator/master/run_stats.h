@@ -66,6 +66,7 @@ struct RunFacts {
     std::string error;                      // the first fatal error, when !ok
     double elapsed = 0;
     int total = 0, rendered = 0, resumed = 0, skipped = 0;
+    std::vector<std::pair<int, std::string>> given_up;     // frame numbers, and why
     Savings savings;
 };
 
@@ -79,6 +80,7 @@ struct RunSummary {
     std::string virtual_machine;
     std::vector<double> frame_seconds;  // per rendered frame, in frame order
     std::vector<int> frame_numbers;
+    std::vector<std::pair<int, std::string>> given_up;     // --keep-going: frames without a file
     Savings savings;
     std::map<std::string, HostStat> hosts;
 };

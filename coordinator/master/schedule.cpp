@@ -630,6 +630,92 @@ bool Schedule::find_range(int slave)
     return true;
 }
 
+bool Schedule::suspended(int slave) const
+{
+    auto it = slaves_.find(slave);
+    return it != slaves_.end() && it->second.suspended;
+}
+
+bool Schedule::resume(int slave)
+{
+    auto it = slaves_.find(slave);
+    if (it == slaves_.end() || !it->second.suspended)
+        return false;
+    for (auto &kv : jobs_)
+        if (kv.second.live && kv.second.stalled && kv.second.slave == slave)
+            return false;
+    it->second.suspended = false;
+    return true;
+}
+
+void Schedule::stall(int id, std::vector<Job> &cancel)
+{
+    auto it = jobs_.find(id);
+    if (it == jobs_.end() || !it->second.live || it->second.stalled)
+        return;
+    Job &j = it->second;
+    j.stalled = true;
+    int slave = j.slave;
+    slaves_[slave].suspended = true;
+    leave_range(slave);
+    for (auto &kv : jobs_) {
+        Job &q = kv.second;
+        if (!q.live || q.slave != slave || q.id == id)
+            continue;
+        q.live = false;
+        if (q.dup_of >= 0 && jobs_.count(q.dup_of))
+            jobs_[q.dup_of].has_dup = false;
+        orphan(q.index, q.tiles, q.failures, 0);
+        cancel.push_back(q);
+    }
+    prune();
+}
+
+const Job *Schedule::take_stalled(int slave, double t)
+{
+    int host = slaves_[slave].host;
+    for (auto &kv : jobs_) {
+        Job &j = kv.second;
+        if (!j.live || !j.stalled || j.has_dup || j.slave == slave)
+            continue;
+        // The stall may be its host's (stopped, unreachable): a slave of another host takes
+        // the copy when there is one.
+        auto owner = slaves_.find(j.slave);
+        int stalled_host = owner == slaves_.end() ? 0 : owner->second.host;
+        if (host == stalled_host) {
+            bool other_host = false;
+            for (auto &s : slaves_)
+                other_host = other_host || (s.second.host != stalled_host && !suspended(s.first));
+            if (other_host)
+                continue;
+        }
+        std::vector<int> m = missing(j.index, j.tiles);
+        if (m.empty())
+            continue;
+        int oid = j.id;
+        int id = add_job(slave, j.index, m, -1, t);
+        jobs_[id].dup_of = oid;
+        jobs_[id].failures = jobs_[oid].failures;
+        jobs_[oid].has_dup = true;
+        return &jobs_[id];
+    }
+    return nullptr;
+}
+
+void Schedule::frame_settled(int index, std::vector<Job> &cancel, double t)
+{
+    for (auto &kv : jobs_) {
+        Job &o = kv.second;
+        if (o.live && o.index == index && missing(o.index, o.tiles).empty()) {
+            o.live = false;
+            cancel.push_back(o);
+        }
+    }
+    for (const Job &c : cancel)
+        next_rendering(c.slave, t);
+    prune();
+}
+
 const Job *Schedule::duplicate(int slave, double t)
 {
     // Only a job a slave is rendering (its oldest) counts, and only once it has taken clearly
@@ -637,8 +723,8 @@ const Job *Schedule::duplicate(int slave, double t)
     Job *oldest = nullptr;
     for (auto &kv : jobs_) {
         Job &j = kv.second;
-        if (!j.live || j.slave == slave || j.rendering < 0 || j.dup_of >= 0 || j.has_dup ||
-            missing(j.index, j.tiles).empty())
+        if (!j.live || j.stalled || j.slave == slave || j.rendering < 0 || j.dup_of >= 0 ||
+            j.has_dup || missing(j.index, j.tiles).empty())
             continue;
         if (t - j.rendering < std::max(kStragglerSeconds, 2 * costs_.job_seconds()))
             continue;
@@ -658,11 +744,15 @@ const Job *Schedule::next_job(int slave, double t, bool allow_duplicates)
 {
     if (!slaves_.count(slave) || finished())
         return nullptr;
+    if (suspended(slave))
+        return nullptr;
     // Every slave belongs to a range before any frame is divided, so a division counts all.
     for (auto &kv : slaves_)
-        if (kv.second.range < 0)
+        if (kv.second.range < 0 && !suspended(kv.first))
             find_range(kv.first);
     if (const Job *j = take_orphan(slave, t))
+        return j;
+    if (const Job *j = take_stalled(slave, t))
         return j;
     for (int attempt = 0; attempt < 3; attempt++) {
         if (slaves_[slave].range < 0 && !find_range(slave))

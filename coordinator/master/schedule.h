@@ -37,7 +37,11 @@
 // handed out at most two per slave ahead, so a split needs no handshake.
 // When nothing is left to hand out, an idle slave duplicates the oldest job another slave is
 // rendering, once it ran twice as long as jobs take (stragglers); the first result of each
-// cell wins and the slower copy is cancelled.
+// cell wins and the slower copy is cancelled. A job whose slave has not finished it by its
+// deadline (stalled: a stopped or hung renderer or slave, a frame that never ends) gets a copy
+// at once, before any other work, on another slave, another host's when there is one; its
+// slave gets nothing more (its queued job and its share of the range go to the others) until
+// that job is over, either way.
 //
 // Faults: the cells of a job whose slave died or failed go back to the front of the queue
 // (orphans), preferring another host for failed ones; a cell that failed kRetries times
@@ -72,6 +76,7 @@ struct Job {
     int range = -1;             // the range it came from (-1: an orphan or a duplicate)
     int dup_of = -1;            // the job this one duplicates
     bool has_dup = false;
+    bool stalled = false;       // its slave has not finished it by its deadline (liveness.h)
     bool live = true;           // handed out, no result yet
     int failures = 0;           // failed attempts of these cells before this one
     double started = 0;         // handed out
@@ -124,9 +129,25 @@ public:
     // live).
     void job_done(int id, int index, std::vector<Job> &cancel, double t);
 
-    // A job failed on its slave (not a scene error): its missing cells become orphans that
-    // avoid that host. Returns the largest failure count of those cells.
+    // A job failed on its slave (not a scene error), or was abandoned there: its missing
+    // cells become orphans that avoid that host. Returns the largest failure count of those
+    // cells.
     int job_failed(int id, double t);
+
+    // Job id did not finish by its deadline: it gets a copy on the next slave that asks (not
+    // its own), and its slave is suspended: its queued jobs are taken back (appended to
+    // cancel, their cells orphans) and it leaves its range.
+    void stall(int id, std::vector<Job> &cancel);
+    // Whether slave is suspended: it gets no work.
+    bool suspended(int slave) const;
+    // The slave spoke: its suspension ends once its stalled job is over (a result, a failure,
+    // a cancel it confirmed), since a slave that is stopped itself says nothing. Returns
+    // whether it was suspended and is no longer.
+    bool resume(int slave);
+
+    // Frame index needs no more work (its cells are done: given up, skipped): its live jobs
+    // are appended to cancel.
+    void frame_settled(int index, std::vector<Job> &cancel, double t);
 
     const Job *find(int id) const;
     const std::map<int, Job> &jobs() const { return jobs_; }
@@ -153,6 +174,7 @@ private:
         int range = -1;
         int cursor = 0;                 // next index it takes in its range
         int last = -1;                  // the latest frame index it was given (-1: none yet)
+        bool suspended = false;         // a job of it stalled: no work until it speaks
     };
     struct Orphan {
         int index = 0;
@@ -168,6 +190,7 @@ private:
     void next_rendering(int slave, double t);
     int add_job(int slave, int index, const std::vector<int> &tiles, int range, double t);
     const Job *take_orphan(int slave, double t);
+    const Job *take_stalled(int slave, double t);
     const Job *take_from_range(int slave, double t);
     bool find_range(int slave);
     int split_take(const Range &r, int slave) const;   // frames a split of r would give slave

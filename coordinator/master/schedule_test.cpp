@@ -681,3 +681,97 @@ TEST(Schedule, SimulationsCompleteEveryCellOnce)
         simulate(Division::Hybrid, seed, true);
     }
 }
+
+// A stalled job (its slave stopped, its renderer hung) gets a copy on the next slave that asks,
+// before the range's own work; its slave gets nothing more until the job is over, and its
+// queued job and its share of the range go to the others.
+TEST(Schedule, AStalledJobIsCopiedAtOnceAndItsSlaveSuspended)
+{
+    Board s(make_tiles(kArea, 80), 12, Division::Frame);     // 4 tiles
+    s.add_slave(1, 100);
+    s.add_slave(2, 200);
+    s.plan(1);
+    const Job *a1 = s.next_job(1, 0, true);
+    const Job *a2 = s.next_job(1, 0, true);
+    const Job *b1 = s.next_job(2, 0, true);
+    ASSERT_TRUE(a1 && a2 && b1);
+    int stalled = a1->id, queued = a2->id, frame0 = a1->index;
+    std::vector<int> queued_tiles = a2->tiles;
+    int queued_index = a2->index;
+    deliver(s, *b1, nullptr, 1);
+    std::vector<Job> cancel;
+    s.stall(stalled, cancel);
+    ASSERT_EQ(cancel.size(), 1u);
+    EXPECT_EQ(cancel[0].id, queued);
+    EXPECT_TRUE(s.suspended(1));
+    EXPECT_FALSE(s.suspended(2));
+    EXPECT_EQ(s.next_job(1, 2, true), nullptr);     // nothing for a suspended slave
+    // Slave 2 gets the queued job's cells back first (orphans), then the copy.
+    const Job *o = s.next_job(2, 2, true);
+    ASSERT_TRUE(o);
+    EXPECT_EQ(o->index, queued_index);
+    EXPECT_EQ(o->tiles, queued_tiles);
+    EXPECT_EQ(o->dup_of, -1);
+    const Job *copy = s.next_job(2, 2, true);
+    ASSERT_TRUE(copy);
+    EXPECT_EQ(copy->dup_of, stalled);
+    EXPECT_EQ(copy->index, frame0);
+    // Its slave speaking while the job still stalls changes nothing.
+    EXPECT_FALSE(s.resume(1));
+    // The copy's result cancels the stalled job; its slave stays suspended until it speaks (a
+    // stopped slave never does), then is free again.
+    std::vector<Job> cancelled;
+    deliver(s, *copy, &cancelled, 3);
+    ASSERT_EQ(cancelled.size(), 1u);
+    EXPECT_EQ(cancelled[0].id, stalled);
+    EXPECT_TRUE(s.frame_done(frame0));
+    EXPECT_TRUE(s.suspended(1));
+    EXPECT_EQ(s.next_job(1, 4, true), nullptr);
+    EXPECT_TRUE(s.resume(1));
+    EXPECT_FALSE(s.suspended(1));
+    const Job *back = s.next_job(1, 4, true);
+    ASSERT_TRUE(back);
+    EXPECT_GT(back->index, frame0);
+}
+
+// The copy goes to another host's slave when there is one; with none, to any other slave.
+TEST(Schedule, AStalledJobIsCopiedOnAnotherHostFirst)
+{
+    Board s({kArea}, 4, Division::Sequence);
+    s.add_slave(1, 100);
+    s.add_slave(2, 100);    // the stalled slave's host
+    s.add_slave(3, 300);
+    s.plan(3);
+    const Job *j = s.next_job(1, 0, true);
+    ASSERT_TRUE(j);
+    int stalled = j->id;
+    // Slaves 2 and 3 busy with their own ranges: two jobs each.
+    for (int slave : {2, 3})
+        while (s.live_jobs(slave) < 2 && s.next_job(slave, 0, true)) {
+        }
+    std::vector<Job> cancel;
+    s.stall(stalled, cancel);
+    // Slave 2 (same host) gets no copy while slave 3 can have it.
+    const Job *k = s.next_job(2, 1, true);
+    EXPECT_TRUE(k == nullptr || k->dup_of != stalled);
+    const Job *copy = s.next_job(3, 1, true);
+    ASSERT_TRUE(copy);
+    EXPECT_EQ(copy->dup_of, stalled);
+}
+
+// A frame that needs no more work (given up) cancels its live jobs.
+TEST(Schedule, ASettledFrameCancelsItsJobs)
+{
+    Board s(make_tiles(kArea, 80), 2, Division::Frame);
+    s.add_slave(1, 100);
+    s.plan(1);
+    const Job *j = s.next_job(1, 0, true);
+    ASSERT_TRUE(j);
+    int id = j->id, index = j->index;
+    s.mark_frame(index);
+    std::vector<Job> cancel;
+    s.frame_settled(index, cancel, 1);
+    ASSERT_EQ(cancel.size(), 1u);
+    EXPECT_EQ(cancel[0].id, id);
+    EXPECT_EQ(s.live_jobs(1), 0);
+}

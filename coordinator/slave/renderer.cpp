@@ -272,6 +272,22 @@ bool Renderer::pump(std::vector<FrameRecord> &done, RendererFailure &failure)
     return true;
 }
 
+std::string Renderer::last_words()
+{
+    if (child_.fd >= 0) {
+        std::vector<std::string> lines;
+        read_child(child_, lines);
+        for (const std::string &l : lines) {
+            tail_.push_back(l);
+            if (tail_.size() > kTailLines)
+                tail_.pop_front();
+        }
+    }
+    std::vector<std::string> tail(tail_.begin(), tail_.end());
+    std::string words = failure_excerpt(tail);
+    return words.empty() ? "(POV-Ray printed nothing)\n" : words;
+}
+
 void Renderer::stop()
 {
     if (state_ == Waiting && control_ >= 0) {

@@ -72,6 +72,10 @@ public:
     // exited unexpectedly in any state (then it is Stopped).
     bool pump(std::vector<FrameRecord> &done, RendererFailure &failure);
 
+    // POV-Ray's last console lines (its error lines when it printed any), for a job that is
+    // abandoned because it never finished.
+    std::string last_words();
+
     // End the process: "stop" when it waits (it exits by itself), otherwise kill it.
     void stop();
     void kill();

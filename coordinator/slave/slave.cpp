@@ -53,12 +53,13 @@ private:
     void on_setup();
     void on_job();
     void on_cancel();
+    void on_abandon();
 
     // The renderer.
     void feed_renderer();
     void renderer_output();
     bool send_frame(const FrameRecord &rec);
-    void fail(const JobMsg &job, const RendererFailure &f);
+    void fail(const JobMsg &job, const RendererFailure &f, bool abandoned = false);
     void heartbeat();
 
     int master_ = 0;
@@ -163,12 +164,48 @@ void Slave::on_cancel()
             return;
         }
     if (busy_ && current_.job == job) {
-        // Its frame is half rendered: only a new process can drop it.
+        // Its frame is half rendered: only a new process can drop it. The master hears of it
+        // (frame -1): a slave whose job stalled gets work again once it speaks.
         debug_log("job %d cancelled while rendering", job);
         renderer_.kill();
         busy_ = false;
+        Progress idle;
+        idle.job = job;
+        idle.frame = -1;
+        if (send_msg(master_, FC_PROGRESS, idle) < 0)
+            g_stop = 1;
         feed_renderer();
     }
+}
+
+// The master gave up waiting for a job (it never finished within its deadline): the renderer
+// is stopped, and POV-Ray's last words go back with the job's failure.
+void Slave::on_abandon()
+{
+    int job = 0;
+    if (!unpack_int(job))
+        return;
+    JobMsg abandoned;
+    RendererFailure f;
+    f.status = -1;
+    if (busy_ && current_.job == job) {
+        f.message = renderer_.last_words();
+        renderer_.kill();
+        busy_ = false;
+        abandoned = current_;
+    } else {
+        auto it = queue_.begin();
+        while (it != queue_.end() && it->job != job)
+            ++it;
+        if (it == queue_.end())
+            return;     // already over: its result or failure is on its way
+        abandoned = *it;
+        queue_.erase(it);
+        f.message = "(it had not begun)\n";
+    }
+    debug_log("job %d abandoned", job);
+    fail(abandoned, f, true);
+    feed_renderer();
 }
 
 // Give the renderer its next job, starting a process when the running one cannot take it.
@@ -265,13 +302,14 @@ void Slave::renderer_output()
     feed_renderer();
 }
 
-void Slave::fail(const JobMsg &job, const RendererFailure &f)
+void Slave::fail(const JobMsg &job, const RendererFailure &f, bool abandoned)
 {
     Failure m;
     m.job = job.job;
     m.frame = job.frame;
     m.scene_error = f.scene_error ? 1 : 0;
     m.status = f.status;
+    m.abandoned = abandoned ? 1 : 0;
     m.message = f.message;
     debug_log("job %d failed (%s): %s", job.job, f.scene_error ? "scene" : "slave",
               f.message.c_str());
@@ -339,6 +377,7 @@ int Slave::run()
             case FC_SETUP: on_setup(); break;
             case FC_JOB: on_job(); break;
             case FC_CANCEL: on_cancel(); break;
+            case FC_ABANDON: on_abandon(); break;
             case FC_PING: break;
             case FC_QUIT: return 0;
             case FC_MASTEREXIT: return 0;
