@@ -10,11 +10,14 @@ time. (How fast, measured: scripts/liveness-goals.)
 import os
 import shutil
 import signal
+import subprocess
+import time
 
 import pytest
 
 from conftest import COORDINATOR_SCENES, coordinator_cmdline, frame_files, load_rgb
-from test_coordinator import SCENE, SLOW, assert_same_frames, slave_pids, wait_for_frames
+from test_coordinator import (SCENE, SLOW, assert_same_frames, parent_pid, program_pids,
+                             slave_pids, wait_for_frames)
 
 pytestmark = pytest.mark.usefixtures("coordinator_build")
 
@@ -113,4 +116,92 @@ def test_scene_error_at_one_frame(coordinator, coordinator_references, tmp_path)
     assert "frame five is broken" in r.stderr, r.stderr
     assert "frames without a file (their messages above): 5" in r.stderr, r.stderr
     assert_same_as(out, "broken5", coordinator_references.frames(SCENE, options), skip=5)
+    assert coordinator.wait_no_processes() == []
+
+
+# --- a pvmd that does not answer -------------------------------------------------------------
+
+def start_shared_pvmd(coordinator):
+    """A running virtual machine in the test's PVM_TMP, as a user starts one; returns the
+    pvmd's pid."""
+    env = coordinator.env({"PVM_ALLOW_ROOT": "1"})
+    started = subprocess.run(["pvm"], input="quit\n", env=env, capture_output=True, text=True,
+                             timeout=30)
+    assert "pvmd still running" in started.stdout + started.stderr, started
+    pvmds = program_pids(coordinator, "pvmd")
+    pvmds = [p for p in pvmds if parent_pid(p) not in pvmds]
+    assert len(pvmds) == 1
+    return pvmds[0]
+
+
+class Freezer:
+    """A cgroup-v1 freezer group: its processes hang (state D) as on a dead file server."""
+
+    def __init__(self, name):
+        self.path = "/sys/fs/cgroup/freezer/" + name
+
+    def __enter__(self):
+        os.mkdir(self.path)
+        return self
+
+    def freeze(self, pid):
+        with open(self.path + "/cgroup.procs", "w") as f:
+            f.write(str(pid))
+        with open(self.path + "/freezer.state", "w") as f:
+            f.write("FROZEN")
+
+    def __exit__(self, *exc):
+        with open(self.path + "/freezer.state", "w") as f:
+            f.write("THAWED")
+        with open(self.path + "/cgroup.procs") as f:
+            for pid in f.read().split():
+                os.kill(int(pid), signal.SIGKILL)
+        deadline = time.time() + 10
+        while time.time() < deadline:
+            try:
+                os.rmdir(self.path)
+                break
+            except OSError:
+                time.sleep(0.1)
+
+
+def test_stopped_pvmd_is_named_with_what_to_do(coordinator, tmp_path):
+    pvmd = start_shared_pvmd(coordinator)
+    os.kill(pvmd, signal.SIGSTOP)
+    try:
+        r = coordinator.run(["--no-fc", SCENE] + ["+W64", "+H48", "+KFI1", "+KFF2"] +
+                            ["-o", str(tmp_path / "out")], env={"PVM_ALLOW_ROOT": "1"}, timeout=30)
+    finally:
+        os.kill(pvmd, signal.SIGKILL)
+        os.kill(pvmd, signal.SIGCONT)
+    assert r.returncode == 1, r.stderr
+    assert "(pid %d, PVM_TMP=%s) is stopped" % (pvmd, coordinator.pvm_tmp) in r.stderr, r.stderr
+    assert "kill -CONT %d" % pvmd in r.stderr, r.stderr
+    assert len(r.stderr.splitlines()) == 1, r.stderr
+    assert coordinator.wait_no_processes() == []
+
+
+@pytest.mark.skipif(not os.path.isdir("/sys/fs/cgroup/freezer"), reason="needs a cgroup freezer")
+@pytest.mark.parametrize("stop", [None, signal.SIGTERM], ids=["bound", "sigterm"])
+def test_hung_pvmd_never_hangs_the_master(coordinator, tmp_path, stop):
+    pvmd = start_shared_pvmd(coordinator)
+    with Freezer("fc-test-" + coordinator.mark):
+        Freezer("fc-test-" + coordinator.mark).freeze(pvmd)
+        p = coordinator.start(["--no-fc", SCENE, "+W64", "+H48", "+KFI1", "+KFF2", "-o",
+                               str(tmp_path / "out")], env={"PVM_ALLOW_ROOT": "1"})
+        if stop:
+            time.sleep(2)       # into the pvmd's silence
+            stopped = time.time()
+            p.send_signal(stop)
+        _, err = p.communicate(timeout=60)
+        if stop:
+            # Deaf to nothing: the signal ends it at once, though libpvm never returns.
+            assert p.returncode == 128 + stop, err
+            assert time.time() - stopped < 5, err
+            assert "interrupted" in err, err
+        else:
+            # The call has a bound, and the message says which pvmd and what to do.
+            assert p.returncode == 1, err
+            assert "pvm_mytid (within 10 s) did not return" in err, err
+            assert "the PVM daemon (pid %d" % pvmd in err and "kill %d" % pvmd in err, err
     assert coordinator.wait_no_processes() == []

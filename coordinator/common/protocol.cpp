@@ -3,6 +3,9 @@
 
 #include <pvm3.h>
 
+#include "text.h"
+#include "watchdog.h"
+
 namespace fc {
 
 const char *tag_name(int tag)
@@ -149,7 +152,14 @@ struct Unpacker {
 
 } // namespace
 
-int send_packed(int tid, int tag) { return pvm_send(tid, tag); }
+int send_packed(int tid, int tag)
+{
+    // A send blocks only while the peer's socket is full and the peer reads nothing (a
+    // stopped slave with a large message in front of it).
+    watchdog::Guard guard(strf("sending %s to t%x", tag_name(tag), unsigned(tid)), 30,
+                          strf("task t%x does not take messages (stopped?)", unsigned(tid)));
+    return pvm_send(tid, tag);
+}
 
 int pack(const Hello &m) { return Packer().s(m.host).i(m.cpus).i(m.pid).status; }
 bool unpack(Hello &m) { return Unpacker().s(m.host).i(m.cpus).i(m.pid).ok; }

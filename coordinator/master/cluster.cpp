@@ -12,6 +12,8 @@
 #include "host_info.h"
 #include "protocol.h"
 #include "pvm_error.h"
+#include "text.h"
+#include "watchdog.h"
 
 namespace fc {
 
@@ -21,6 +23,7 @@ bool Cluster::start(bool force_private, const std::string &hostfile, const std::
     if (!vm_.start(force_private, hostfile, pvmd_name, timeout, err))
         return false;
     kind_ = vm_.embedded() ? "private" : "running";
+    watchdog::Guard guard("pvm_config and pvm_notify", watchdog::kLocalPvmBound);
     my_dtid_ = pvm_tidtohost(vm_.mytid());
     int nhost = 0, narch = 0;
     struct pvmhostinfo *hi = nullptr;
@@ -52,6 +55,7 @@ void Cluster::wait_for_hosts(size_t want, double timeout)
 {
     double deadline = now() + timeout;
     for (;;) {
+        watchdog::Guard guard("pvm_config", watchdog::kLocalPvmBound);
         int nhost = 0, narch = 0;
         struct pvmhostinfo *hi = nullptr;
         if (pvm_config(&nhost, &narch, &hi) < 0)
@@ -65,7 +69,7 @@ void Cluster::wait_for_hosts(size_t want, double timeout)
             hosts_[h.dtid] = h;
             pvm_notify(PvmHostDelete, FC_HOSTDEL, 1, &h.dtid);
         }
-        if (hosts_.size() >= want || now() >= deadline)
+        if (hosts_.size() >= want || now() >= deadline || watchdog::stop_requested())
             return;
         usleep(100000);
     }
@@ -77,8 +81,17 @@ bool Cluster::spawn_on(HostInfo &host, int count)
         return false;
     std::vector<int> tids(size_t(count), 0);
     char *args[] = {nullptr};
-    int n = pvm_spawn(const_cast<char *>(slave_prog.c_str()), args, PvmTaskHost,
+    int n = 0;
+    {
+        // A spawn waits for the host's pvmd: one that died blocks it until PVM declares the
+        // host dead, minutes later.
+        watchdog::Guard guard("pvm_spawn on host " + host.name, 60,
+                              "host " + host.name + " does not answer; remove it from the virtual "
+                              "machine ('delete " + host.name + "' in the pvm console) and run "
+                              "the same command again");
+        n = pvm_spawn(const_cast<char *>(slave_prog.c_str()), args, PvmTaskHost,
                       const_cast<char *>(host.name.c_str()), count, tids.data());
+    }
     std::vector<int> ok;
     for (int i = 0; i < count; i++) {
         if (i < std::max(n, 0) && tids[size_t(i)] > 0) {
@@ -95,6 +108,7 @@ bool Cluster::spawn_on(HostInfo &host, int count)
     }
     if (ok.empty())
         return false;
+    watchdog::Guard guard("pvm_notify", watchdog::kLocalPvmBound);
     int r = pvm_notify(PvmTaskExit, FC_TASKEXIT, int(ok.size()), ok.data());
     if (r < 0)
         fprintf(stderr, "fc-master: warning: pvm_notify(PvmTaskExit): %s\n", pvm_error(r).c_str());
@@ -143,6 +157,7 @@ int Cluster::hello(SlaveInfo &s, int cpus, int per_host)
 
 void Cluster::hosts_added(const std::vector<int> &added, std::vector<HostInfo *> &joined)
 {
+    watchdog::Guard guard("pvm_config", watchdog::kLocalPvmBound);
     int nhost = 0, narch = 0;
     struct pvmhostinfo *hi = nullptr;
     if (pvm_config(&nhost, &narch, &hi) < 0)

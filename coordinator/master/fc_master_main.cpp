@@ -10,7 +10,7 @@
 #include "image_codec.h"
 #include "image_writer_client.h"
 #include "master.h"
-#include "signals.h"
+#include "watchdog.h"
 
 using namespace fc;
 
@@ -27,7 +27,7 @@ int main(int argc, char **argv)
     setenv("PVM_TMP", "/tmp", 0);
     if (geteuid() == 0)
         setenv("PVM_ALLOW_ROOT", "1", 0);
-    install_signal_handlers(on_signal);
+    watchdog::start("fc-master");
     Master master(opt);
     int rc = master.run();
     debug_log("run done");

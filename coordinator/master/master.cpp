@@ -26,12 +26,9 @@
 #include "protocol.h"
 #include "pvm_error.h"
 #include "text.h"
+#include "watchdog.h"
 
 namespace fc {
-
-volatile sig_atomic_t g_signal = 0;
-
-void on_signal(int sig) { g_signal = sig; }
 
 namespace {
 
@@ -133,7 +130,7 @@ void Master::send_job(SlaveInfo &s, const Job &job)
 // joins, then straggler copies (schedule.h).
 void Master::dispatch()
 {
-    if (failed_ || quit_early_ || g_signal)
+    if (failed_ || quit_early_ || watchdog::stop_requested())
         return;
     plan_if_ready();
     if (!planned_)
@@ -436,7 +433,7 @@ void Master::slave_gone(SlaveInfo &s, const std::string &why, bool respawn)
     std::vector<int> lost = sched_->remove_slave(s.tid);
     for (int id : lost)
         stats_.job_ended(id, "lost");
-    if (failed_ || quit_early_ || g_signal || book_->all_rendered())
+    if (failed_ || quit_early_ || watchdog::stop_requested() || book_->all_rendered())
         return;
     report_.clear_line();
     fprintf(stderr, "fc-master: slave t%x on %s %s%s\n", unsigned(s.tid), s.host.c_str(),
@@ -516,8 +513,10 @@ void Master::check_timeouts()
             // exits when the master does (FC_MASTEREXIT).
             s.killed = true;
             bool local = s.dtid == cluster_.my_host();
-            if (local)
+            if (local) {
+                watchdog::Guard guard("pvm_sendsig", watchdog::kLocalPvmBound);
                 pvm_sendsig(s.tid, SIGKILL);
+            }
             slave_gone(s, strf("was silent for %.0f s and is %s", silent,
                                local ? "stopped" : "abandoned"), false);
             continue;
@@ -620,7 +619,8 @@ void Master::shutdown_slaves()
     for (int tid : live)
         if (pack_empty() >= 0)
             send_packed(tid, FC_QUIT);
-    double deadline = now() + 5;
+    // Under a stop signal the process has a second in all (watchdog.h): no long wait.
+    double deadline = now() + (watchdog::stop_requested() ? 0.3 : 5);
     std::set<int> waiting;
     for (int tid : live) {
         SlaveInfo *s = cluster_.slave(tid);
@@ -629,13 +629,17 @@ void Master::shutdown_slaves()
         if (s->dtid == cluster_.my_host() && !sched_->suspended(tid))
             waiting.insert(tid);
         else if (s->dtid == cluster_.my_host())
-            pvm_sendsig(tid, SIGKILL);     // it stopped answering: no use waiting for it
+            kill_local_slave(tid);      // it stopped answering: no use waiting for it
         if (!waiting.count(tid))
             s->state = SlaveState::Gone;
     }
     while (!waiting.empty() && now() < deadline) {
-        struct timeval tv = {0, 200000};
-        int buf = pvm_trecv(-1, FC_TASKEXIT, &tv);
+        struct timeval tv = {0, 100000};
+        int buf = 0;
+        {
+            watchdog::Guard guard("pvm_trecv", watchdog::kLocalPvmBound);
+            buf = pvm_trecv(-1, FC_TASKEXIT, &tv);
+        }
         if (buf < 0)
             break;
         if (buf == 0)
@@ -648,10 +652,17 @@ void Master::shutdown_slaves()
         }
     }
     for (int tid : waiting) {
-        pvm_sendsig(tid, SIGKILL);
+        kill_local_slave(tid);
         if (SlaveInfo *s = cluster_.slave(tid))
             s->state = SlaveState::Gone;
     }
+}
+
+// SIGKILL also ends a stopped process.
+void Master::kill_local_slave(int tid)
+{
+    watchdog::Guard guard("pvm_sendsig", watchdog::kLocalPvmBound);
+    pvm_sendsig(tid, SIGKILL);
 }
 
 // What the clock does every kTick seconds, whatever the traffic.
@@ -678,17 +689,20 @@ int Master::loop()
     start_ = now();
     next_tick_ = start_;    // the first tick at once: the progress line shows from the start
     while (!book_->all_rendered() && !failed_ && !quit_early_) {
-        if (g_signal) {
+        if (int sig = watchdog::stop_requested()) {
             report_.clear_line();
-            fprintf(stderr, "fc-master: interrupted (%s): stopping the slaves\n",
-                    strsignal(g_signal));
+            fprintf(stderr, "fc-master: interrupted (%s): stopping the slaves\n", strsignal(sig));
             shutdown_slaves();
             write_complete_frames(true);    // what was rendered is kept
-            return 128 + g_signal;
+            return 128 + sig;
         }
         double wait = std::max(0.0, next_tick_ - now());
         struct timeval tv = {long(wait), long((wait - std::floor(wait)) * 1e6)};
-        int buf = pvm_trecv(-1, -1, &tv);
+        int buf = 0;
+        {
+            watchdog::Guard guard("pvm_trecv", wait + watchdog::kLocalPvmBound);
+            buf = pvm_trecv(-1, -1, &tv);
+        }
         if (buf < 0) {
             fatal("lost contact with the PVM daemon: " + pvm_error(buf));
             break;

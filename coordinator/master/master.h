@@ -8,8 +8,6 @@
 // loop (master.cpp) between the set-up and the end (master_setup.cpp).
 #pragma once
 
-#include <signal.h>
-
 #include <map>
 #include <memory>
 #include <set>
@@ -31,11 +29,6 @@
 #include "schedule.h"
 
 namespace fc {
-
-// The signal that asks the master to stop (0: none); set by the handler in master.cpp.
-extern volatile sig_atomic_t g_signal;
-// The handler of SIGINT, SIGTERM and SIGHUP: sets g_signal.
-void on_signal(int sig);
 
 class Master {
 public:
@@ -95,6 +88,7 @@ private:
     ProgressState progress_state() const;
     void fatal(const std::string &msg);
     void shutdown_slaves();
+    void kill_local_slave(int tid);
 
     Options opt_;
     RenderPlan plan_;

@@ -9,6 +9,7 @@
 #include "files.h"
 #include "output_setup.h"
 #include "text.h"
+#include "watchdog.h"
 
 namespace fc {
 
@@ -122,7 +123,7 @@ int Master::run()
 {
     debug_log("master starts");
     if (!set_up())
-        return 1;
+        return watchdog::stop_requested() ? 128 + watchdog::stop_requested() : 1;
     if (book_->all_rendered()) {
         fprintf(stderr, "fc-master: all %d frame(s) already exist in %s: nothing to render\n",
                 book_->count(), outdir_.path().c_str());
@@ -138,7 +139,7 @@ int Master::run()
     debug_log("probes done");
     if (!start_cluster()) {
         cluster_.stop();
-        return 1;
+        return watchdog::stop_requested() ? 128 + watchdog::stop_requested() : 1;
     }
     debug_log("slaves spawned");
     int rc = loop();

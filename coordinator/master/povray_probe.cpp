@@ -16,6 +16,7 @@
 #include "files.h"
 #include "povray_console.h"
 #include "text.h"
+#include "watchdog.h"
 
 namespace fc {
 
@@ -36,8 +37,13 @@ bool run_collect(const std::vector<std::string> &argv, const std::string &cwd, d
             err = strf("%s did not finish within %.0f s", argv[0].c_str(), timeout);
             return false;
         }
-        poll(&p, 1, std::min(left, 500));
+        poll(&p, 1, std::min(left, 100));
         read_child(child, lines);
+        if (int sig = watchdog::stop_requested()) {
+            kill_child(child);
+            err = strf("interrupted (%s)", strsignal(sig));
+            return false;
+        }
     }
     if (!wait_child(child, std::max(1.0, deadline - now()), status)) {
         kill_child(child);

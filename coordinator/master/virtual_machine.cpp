@@ -17,6 +17,7 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <cerrno>
 #include <cstdio>
 #include <cstdlib>
@@ -30,6 +31,7 @@
 #include "pvm_error.h"
 #include "temp_dirs.h"
 #include "text.h"
+#include "watchdog.h"
 
 namespace fc {
 
@@ -144,6 +146,31 @@ bool pvmd_alive(const std::string &pvm_tmp)
     return false;
 }
 
+// Whether process pid is stopped (SIGSTOP, or traced): its state in /proc/PID/stat.
+bool process_stopped(int pid)
+{
+    std::string stat, err;
+    if (!read_text(strf("/proc/%d/stat", pid), stat, err))
+        return false;
+    size_t paren = stat.rfind(')');
+    if (paren == std::string::npos || paren + 2 >= stat.size())
+        return false;
+    char state = stat[paren + 2];
+    return state == 'T' || state == 't';
+}
+
+// What to do about a pvmd that does not answer.
+std::string pvmd_hint(const std::string &pvm_tmp, int pid)
+{
+    std::string file = pvm_tmp + strf("/pvmd.%d", int(getuid()));
+    if (pid <= 0)
+        return "the PVM daemon behind " + file + " does not answer: stop it and remove " + file +
+               ", or use --private";
+    return strf("the PVM daemon (pid %d, PVM_TMP=%s) does not answer: if it is stopped, "
+                "'kill -CONT %d'; else stop it ('kill %d') and remove %s; or use --private",
+                pid, pvm_tmp.c_str(), pid, pid, file.c_str());
+}
+
 std::string pvmd_program()
 {
     const char *root = getenv("PVM_ROOT");
@@ -171,13 +198,29 @@ bool VirtualMachine::start(bool force_private, const std::string &hostfile,
                            const std::string &name, double timeout, std::string &err)
 {
     pvm_setopt(PvmAutoErr, 0);
+    add_timeout_ = timeout;
     if (!force_private) {
         const char *t = getenv("PVM_TMP");
         std::string pvm_tmp = (t && *t) ? t : "/tmp";
         if (pvmd_alive(pvm_tmp)) {
             if (geteuid() == 0 && !getenv("PVM_ALLOW_ROOT"))
                 setenv("PVM_ALLOW_ROOT", "1", 1);
-            mytid_ = pvm_mytid();
+            // A stopped pvmd still accepts connections (the kernel does), and libpvm then
+            // waits for its answer forever.
+            int pid = pvmd_process(pvm_tmp);
+            std::string hint = pvmd_hint(pvm_tmp, pid);
+            if (pid > 0 && process_stopped(pid)) {
+                err = strf("the PVM daemon (pid %d, PVM_TMP=%s) is stopped: resume it ('kill "
+                           "-CONT %d'), or stop it ('kill %d') and remove %s/pvmd.%d; or use "
+                           "--private", pid, pvm_tmp.c_str(), pid, pid, pvm_tmp.c_str(),
+                           int(getuid()));
+                return false;
+            }
+            watchdog::set_pvm_hint(hint);
+            {
+                watchdog::Guard guard("pvm_mytid", watchdog::kLocalPvmBound);
+                mytid_ = pvm_mytid();
+            }
             if (mytid_ < 0) {
                 err = "cannot join the running virtual machine (PVM_TMP=" + pvm_tmp +
                       "): pvm_mytid: " + pvm_error(mytid_);
@@ -261,7 +304,15 @@ bool VirtualMachine::add_hosts(const std::string &hostfile, std::string &err)
     for (std::string &n : names)
         argv.push_back(&n[0]);
     std::vector<int> info(names.size(), 0);
-    int r = pvm_addhosts(argv.data(), int(argv.size()), info.data());
+    int r = 0;
+    {
+        // pvm_addhosts starts each host's pvmd over PVM_RSH and waits for all of them.
+        watchdog::Guard guard("pvm_addhosts", std::max(60.0, add_timeout_),
+                              "adding the hosts of " + hostfile + " goes through PVM_RSH (" +
+                                  std::string(getenv("PVM_RSH") ? getenv("PVM_RSH") : "rsh") +
+                                  "): check that each host answers it, or leave it out");
+        r = pvm_addhosts(argv.data(), int(argv.size()), info.data());
+    }
     std::string failed;
     for (size_t i = 0; i < names.size(); i++) {
         int code = r < 0 ? r : info[i];
@@ -373,17 +424,20 @@ bool VirtualMachine::start_private(const std::string &hostfile, const std::strin
     close(out[1]);
     pvmd_pid_ = pid;
     embedded_ = true;
+    // Ended by the watchdog, the master takes its pvmd along (its tasks here with it).
+    watchdog::kill_with_me(pid);
+    watchdog::set_pvm_hint(strf("the private PVM daemon (pid %d) does not answer", int(pid)));
 
     // The pvmd prints its socket name on stdout once it is ready.
     std::string line;
     double deadline = now() + timeout;
     bool ready = false;
-    while (!ready) {
+    while (!ready && !watchdog::stop_requested()) {
         int left = int((deadline - now()) * 1000);
         if (left <= 0)
             break;
         struct pollfd p = {out[0], POLLIN, 0};
-        if (poll(&p, 1, left) <= 0)
+        if (poll(&p, 1, std::min(left, 100)) <= 0)
             continue;
         char c;
         ssize_t n = read(out[0], &c, 1);
@@ -410,7 +464,10 @@ bool VirtualMachine::start_private(const std::string &hostfile, const std::strin
         stop();
         return false;
     }
-    mytid_ = pvm_mytid();
+    {
+        watchdog::Guard guard("pvm_mytid", watchdog::kLocalPvmBound);
+        mytid_ = pvm_mytid();
+    }
     if (mytid_ < 0) {
         err = "pvm_mytid after starting a private pvmd: " + pvm_error(mytid_);
         stop();
@@ -422,18 +479,26 @@ bool VirtualMachine::start_private(const std::string &hostfile, const std::strin
 void VirtualMachine::stop()
 {
     if (!embedded_) {
-        if (mytid_ >= 0)
+        if (mytid_ >= 0) {
+            watchdog::Guard guard("pvm_exit", watchdog::kLocalPvmBound);
             pvm_exit();
+        }
         mytid_ = -1;
         return;
     }
+    // A stopped private pvmd would never halt: it is killed below.
+    if (mytid_ >= 0 && pvmd_pid_ > 0 && process_stopped(int(pvmd_pid_)))
+        mytid_ = -1;
     if (mytid_ >= 0) {
         // pvm_halt() also signals its caller with SIGTERM: ignore it for the moment.
         struct sigaction ign, old;
         memset(&ign, 0, sizeof ign);
         ign.sa_handler = SIG_IGN;
         sigaction(SIGTERM, &ign, &old);
-        pvm_halt();
+        {
+            watchdog::Guard guard("pvm_halt", watchdog::kLocalPvmBound);
+            pvm_halt();
+        }
         mytid_ = -1;
         if (pvmd_pid_ > 0) {
             double deadline = now() + 5;
@@ -457,6 +522,7 @@ void VirtualMachine::stop()
             }
         }
         pvmd_pid_ = -1;
+        watchdog::kill_with_me(-1);
     }
     if (!tmpdir_.empty()) {
         remove_tree(tmpdir_);

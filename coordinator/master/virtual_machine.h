@@ -36,6 +36,7 @@ private:
     bool start_private(const std::string &hostfile, const std::string &name, double timeout,
                        std::string &err);
 
+    double add_timeout_ = 60;       // the start's timeout: adding hosts may take that long
     bool embedded_ = false;
     int mytid_ = -1;
     std::string tmpdir_;
