@@ -261,3 +261,40 @@ def test_private_machine_from_hostfile(coordinator, coordinator_references, netn
         time.sleep(0.1)
     assert [program(p) for h in hosts for p in netns_pids(h)] == ["sshd"] * len(hosts)
     assert coordinator.wait_no_processes() == []
+
+
+@pytest.mark.parametrize("fault", ["stopped-host", "killed-pvmd"])
+def test_lost_host_work_is_copied_without_waiting(coordinator, coordinator_references, vm,
+                                                  tmp_path, fault):
+    # With a --timeout far beyond the test's bound, only the progress rules can finish the
+    # run in time: the lost host's jobs pass their deadline and are copied to other hosts.
+    vm.add(vm.hosts, 4)
+    out = tmp_path / "out"
+    lost = vm.hosts[1]
+    p = coordinator.start(["--no-fc", "--timeout", "600", "--division", "frame", SCENE] +
+                          SLOW + ["-o", str(out)], env=vm.env)
+    deadline = time.time() + 60
+    while not any(program(x) in ("povray-fc", "povray") for x in netns_pids(lost)):
+        assert time.time() < deadline and p.poll() is None, "no renderer on " + lost
+        time.sleep(0.05)
+    time.sleep(0.5)
+    victims = [pid for pid in netns_pids(lost)
+               if program(pid) != "sshd" and (fault == "stopped-host" or program(pid) == "pvmd")]
+    for pid in victims:
+        try:
+            os.kill(pid, signal.SIGSTOP if fault == "stopped-host" else signal.SIGKILL)
+        except ProcessLookupError:
+            pass
+    try:
+        err = finish(coordinator, p, timeout=150)
+    finally:
+        for pid in victims:
+            try:
+                os.kill(pid, signal.SIGCONT)
+            except ProcessLookupError:
+                pass
+    assert p.returncode == 0, err + coordinator.trace()
+    assert "another slave renders it too" in err, err
+    # No slave of a healthy host was taken for lost.
+    assert "silent" not in err, err
+    assert_same(out, coordinator_references.frames(SCENE, SLOW))
