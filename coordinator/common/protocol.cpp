@@ -194,14 +194,14 @@ int pack(const FrameResult &m)
     return Packer()
         .i(m.job).i(m.frame).ints(m.tiles).rects(m.rects).d(m.rays).d(m.parse_seconds)
         .d(m.trace_seconds).i(m.fresh).s(m.encoding).bytes(m.data).bytes(m.file)
-        .d(m.file_gamma).status;
+        .d(m.file_gamma).s(m.reads).status;
 }
 bool unpack(FrameResult &m)
 {
     bool ok = Unpacker()
         .i(m.job).i(m.frame).ints(m.tiles).rects(m.rects).d(m.rays).d(m.parse_seconds)
         .d(m.trace_seconds).i(m.fresh).s(m.encoding).bytes(m.data).bytes(m.file)
-        .d(m.file_gamma).ok;
+        .d(m.file_gamma).s(m.reads).ok;
     return ok && !m.rects.empty() && m.tiles.size() == m.rects.size();
 }
 

@@ -87,6 +87,11 @@ struct FrameResult {
     std::vector<uint8_t> data;          // the rectangles in order, rows top first
     std::vector<uint8_t> file;          // a whole frame's image file as POV-Ray wrote it, or empty
     double file_gamma = 0;              // the gamma POV-Ray's file records (0: not said)
+    // The files the frame's parse read or looked for, as the renderer reports them (the frame
+    // record's reads section, frame_record.h): lines "F<TAB>path" (opened and read) and
+    // "A<TAB>path" (looked for, absent), paths as POV-Ray formed them (relative ones to the
+    // renderer's directory, the master's). Empty: the renderer reports none.
+    std::string reads;
 };
 
 struct Progress {

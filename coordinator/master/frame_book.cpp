@@ -1,6 +1,8 @@
 // frame_book.cpp - every frame of the run in one place (see frame_book.h).
 #include "frame_book.h"
 
+#include <time.h>
+
 #include <algorithm>
 #include <cstring>
 
@@ -14,7 +16,7 @@ FrameBook::FrameBook(FrameFiles &files, FrameEncoder &encoder, int width, int he
                      const std::vector<int> &frames, int tiles)
     : files_(files), encoder_(encoder), width_(width), height_(height), frames_(frames),
       cells_(int(frames.size()), tiles), state_(frames.size(), State::ToRender),
-      started_(frames.size(), 0)
+      started_(frames.size(), 0), started_at_(frames.size(), 0)
 {
     for (size_t i = 0; i < frames.size(); i++)
         index_of_[frames[i]] = int(i);
@@ -32,6 +34,7 @@ void FrameBook::no_more_work(int index, State state)
     state_[size_t(index)] = state;
     pixels_.erase(index);
     complete_.erase(index);
+    inputs_.erase(index);
 }
 
 void FrameBook::resumed(int index)
@@ -45,6 +48,9 @@ bool FrameBook::start(int index)
     if (started_[size_t(index)])
         return false;
     started_[size_t(index)] = 1;
+    struct timespec ts;
+    clock_gettime(CLOCK_REALTIME, &ts);
+    started_at_[size_t(index)] = double(ts.tv_sec) + double(ts.tv_nsec) * 1e-9;
     return true;
 }
 
@@ -189,8 +195,14 @@ bool FrameBook::write(int index, std::vector<uint8_t> &samples, bool &disk_full,
         bytes.swap(p.file);
     else if (!encoder_.encode(width_, height_, p.samples.data(), p.file_gamma, bytes, err))
         return false;
-    if (!files_.store(index, bytes, FrameFiles::pixels_hash(p.samples), disk_full, err))
+    FrameInputs unknown;
+    unknown.known = false;
+    auto in = inputs_.find(index);
+    if (!files_.store(index, bytes, FrameFiles::pixels_hash(p.samples),
+                      in == inputs_.end() ? unknown : in->second, disk_full, err))
         return false;
+    if (in != inputs_.end())
+        inputs_.erase(in);
     samples.swap(p.samples);
     pixels_.erase(it);
     complete_.erase(index);

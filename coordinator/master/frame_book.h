@@ -55,6 +55,13 @@ public:
     // The first job of frame index i goes out: true the first time (its Pre_Frame_Command
     // runs then).
     bool start(int index);
+    // When it went out (seconds of the wall clock; 0: not yet): files changed after that may
+    // not be what its parse read.
+    double started_at(int index) const { return started_at_[size_t(index)]; }
+
+    // The files frame index i depends on (frame_inputs.h), recorded with it when written.
+    bool has_inputs(int index) const { return inputs_.count(index) != 0; }
+    void set_inputs(int index, const FrameInputs &inputs) { inputs_[index] = inputs; }
     // A Pre_Frame_Command skipped frame index i: it gets no file.
     void skip(int index);
 
@@ -115,6 +122,8 @@ private:
     CellGrid cells_;
     std::vector<State> state_;
     std::vector<char> started_;
+    std::vector<double> started_at_;
+    std::map<int, FrameInputs> inputs_;         // frames in flight
     std::map<int, Pixels> pixels_;              // frames being assembled or complete
     std::set<int> complete_;                    // complete, not written yet
     std::map<int, Trouble> trouble_;

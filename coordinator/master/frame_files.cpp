@@ -92,7 +92,7 @@ void FrameFiles::remove_stale_temps() const
 }
 
 bool FrameFiles::store(int index, const std::vector<uint8_t> &bytes, uint64_t samples_hash,
-                       bool &disk_full, std::string &err)
+                       const FrameInputs &inputs, bool &disk_full, std::string &err)
 {
     disk_full = false;
     std::string tmp = temp_path(index), dst = final_path(index);
@@ -103,7 +103,7 @@ bool FrameFiles::store(int index, const std::vector<uint8_t> &bytes, uint64_t sa
     // Recorded before it gets its name: a master killed in between leaves a record whose
     // file is missing or another (resume renders it again), never a complete frame under its
     // final name that resume would not recognise and render again.
-    if (!dir_.record(base_name(dst), samples_hash, err)) {
+    if (!dir_.record(base_name(dst), samples_hash, inputs, err)) {
         disk_full = errno == ENOSPC || errno == EDQUOT;
         unlink(tmp.c_str());
         return false;

@@ -12,6 +12,7 @@
 #include <string>
 #include <vector>
 
+#include "frame_inputs.h"
 #include "image_codec.h"
 #include "output_dir.h"
 #include "output_format.h"
@@ -43,10 +44,10 @@ public:
     void remove_stale_temps() const;
 
     // Store frame index i: bytes (its file) under the temporary name, the record of its
-    // samples' hash, the final name. False with err; then disk_full tells whether the file
-    // system ran out of space.
+    // samples' hash and its inputs, the final name. False with err; then disk_full tells
+    // whether the file system ran out of space.
     bool store(int index, const std::vector<uint8_t> &bytes, uint64_t samples_hash,
-               bool &disk_full, std::string &err);
+               const FrameInputs &inputs, bool &disk_full, std::string &err);
 
     OutputDir &dir() { return dir_; }
     const OutputFormat &format() const { return format_; }

@@ -237,6 +237,8 @@ void Master::on_frame(int src)
         fatal(strf("frame %d from host %s: %s", fr.frame, host.c_str(), err.c_str()));
         return;
     }
+    if (!fresh.empty() && !book_->has_inputs(idx))
+        note_inputs(idx, fr, host);
     stats_.frames_held(book_->held());
     stats_.result(fr, idx, fresh, host);
     ResultCost cost;
@@ -260,6 +262,25 @@ void Master::on_frame(int src)
     // The slave's next job goes out now; the receive loop writes the frame after this
     // (write_complete_frames), since writing may wait.
     dispatch();
+}
+
+// What frame index read, from its first result, hashed now: recorded with the frame, so that
+// a resume keeps it only while they are as they were. A renderer that reports nothing read the
+// scene file as far as anyone knows.
+void Master::note_inputs(int index, const FrameResult &fr, const std::string &host)
+{
+    FrameInputs inputs;
+    std::string err;
+    if (fr.reads.empty()) {
+        FrameInputs::File scene;
+        scene.path = plan_.scene_path;
+        inputs.files.push_back(scene);
+    } else if (!parse_reads(fr.reads, plan_.cwd, inputs, err)) {
+        warn(strf("frame %d from host %s: %s", fr.frame, host.c_str(), err.c_str()));
+        inputs.known = false;
+    }
+    hashes_.fill(inputs, book_->started_at(index));
+    book_->set_inputs(index, inputs);
 }
 
 // Write the complete frames the book lets go now (wait: all of them). After a failed write or

@@ -20,6 +20,7 @@
 #include "frame_book.h"
 #include "frame_encoder.h"
 #include "frame_files.h"
+#include "frame_inputs.h"
 #include "liveness.h"
 #include "output_dir.h"
 #include "preview.h"
@@ -62,6 +63,7 @@ private:
     bool run_pre_frame(const Job &job);
     void send_job(SlaveInfo &s, const Job &job);
     void cancel_jobs(const std::vector<Job> &jobs);
+    void note_inputs(int index, const FrameResult &fr, const std::string &host);
     void write_complete_frames(bool wait);
     bool frame_written(int index, std::vector<uint8_t> &samples);
     void slave_gone(SlaveInfo &s, const std::string &why, bool respawn);
@@ -102,6 +104,7 @@ private:
     Cluster cluster_;
     Preview preview_;
     RunStats stats_;
+    InputHashes hashes_;                // the frames' input files' contents
     Liveness liveness_;
     // Frames found hanging: their jobs are abandoned, and POV-Ray's last words awaited.
     struct Hang {

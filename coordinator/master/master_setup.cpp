@@ -51,7 +51,7 @@ bool Master::set_up()
     if (opt_.preview)
         preview_.start(outdir + "/preview", scene.width, scene.height, plan_.format.pixels,
                        book_->count(), now());
-    return prepare_output(opt_, plan_, outdir_, *encoder_, *book_, preview_, stats_);
+    return prepare_output(opt_, plan_, outdir_, *encoder_, *book_, preview_, stats_, hashes_);
 }
 
 bool Master::start_cluster()

@@ -36,6 +36,8 @@ OutputDir::~OutputDir()
 {
     if (journal_fd_ >= 0)
         close(journal_fd_);
+    if (inputs_fd_ >= 0)
+        close(inputs_fd_);
     if (lock_fd_ >= 0)
         close(lock_fd_);    // releases the lock
 }
@@ -106,21 +108,54 @@ bool OutputDir::load(std::string &err)
         // A line cut short by a full disk or a crash names no frame: lines are checked whole.
         std::istringstream in(text);
         std::string line;
+        auto hex16 = [](const std::string &t, uint64_t &v) {
+            char *end = nullptr;
+            v = strtoull(t.c_str(), &end, 16);
+            return t.size() == 16 && end && *end == '\0';
+        };
         while (std::getline(in, line)) {
             size_t sp = line.rfind(' ');
-            if (sp == std::string::npos || line.size() - sp - 1 != 16)
+            if (sp == std::string::npos)
                 continue;
-            char *end = nullptr;
-            uint64_t h = strtoull(line.c_str() + sp + 1, &end, 16);
-            if (!end || *end != '\0')
+            std::string last = line.substr(sp + 1), head = line.substr(0, sp);
+            uint64_t h = 0;
+            // "name w2 HASH INPUTS" (a frame's name ends in its extension, never in " w1")
+            size_t sp2 = head.rfind(' ');
+            if (sp2 != std::string::npos && ends_with(head.substr(0, sp2), " w2") &&
+                hex16(head.substr(sp2 + 1), h) && (last == "-" || last.size() == 16)) {
+                frames_[head.substr(0, sp2 - 3)] = Recorded{h, true, last};
                 continue;
-            // A frame's name ends in its extension, never in " w1".
-            std::string name = line.substr(0, sp);
-            bool words = ends_with(name, " w1");
+            }
+            if (!hex16(last, h))
+                continue;
+            bool words = ends_with(head, " w1");
             if (words)
-                name.resize(name.size() - 3);
-            frames_[name] = Recorded{h, words};
+                head.resize(head.size() - 3);
+            frames_[head] = Recorded{h, words, ""};
         }
+    }
+    path = inputs_path();
+    if (file_exists(path)) {
+        if (!read_text(path, text, err))
+            return false;
+        std::map<std::string, FrameInputs> sets;
+        std::istringstream in(text);
+        std::string line;
+        while (std::getline(in, line)) {
+            // ID TAB F|A TAB CONTENTS|- TAB path
+            size_t t1 = line.find('\t'), t2 = line.find('\t', t1 + 1),
+                   t3 = line.find('\t', t2 == std::string::npos ? t2 : t2 + 1);
+            if (t1 != 16 || t2 != 18 || t3 == std::string::npos)
+                continue;
+            FrameInputs::File f;
+            f.read = line[17] == 'F';
+            f.contents = strtoull(line.substr(19, t3 - 19).c_str(), nullptr, 16);
+            f.path = line.substr(t3 + 1);
+            sets[line.substr(0, 16)].files.push_back(f);
+        }
+        for (auto &kv : sets)
+            if (kv.second.id() == kv.first)
+                inputs_[kv.first] = kv.second;
     }
     return true;
 }
@@ -159,15 +194,21 @@ bool OutputDir::start_run(const Manifest &now, bool fresh, std::string &err)
     journal_fd_ = ::open(journal.c_str(), flags, 0644);
     if (journal_fd_ < 0)
         return sys_fail(err, "open " + journal);
-    if (fresh)
+    std::string inputs = inputs_path();
+    inputs_fd_ = ::open(inputs.c_str(), flags, 0644);
+    if (inputs_fd_ < 0)
+        return sys_fail(err, "open " + inputs);
+    if (fresh) {
         frames_.clear();
+        inputs_.clear();
+    }
     // A line cut short (a full disk) must not run into the next run's first line.
     struct stat st;
     char last = '\n';
-    if (fstat(journal_fd_, &st) == 0 && st.st_size > 0 &&
-        pread(journal_fd_, &last, 1, st.st_size - 1) == 1 && last != '\n' &&
-        write(journal_fd_, "\n", 1) != 1)
-        return sys_fail(err, "write " + journal);
+    for (int fd : {journal_fd_, inputs_fd_})
+        if (fstat(fd, &st) == 0 && st.st_size > 0 && pread(fd, &last, 1, st.st_size - 1) == 1 &&
+            last != '\n' && write(fd, "\n", 1) != 1)
+            return sys_fail(err, "write " + (fd == journal_fd_ ? journal : inputs));
     return true;
 }
 
@@ -181,6 +222,38 @@ std::string OutputDir::journal_path() const
     return meta_ + "/" + run_ + ".frames";
 }
 
+std::string OutputDir::inputs_path() const
+{
+    return meta_ + "/" + run_ + ".inputs";
+}
+
+bool OutputDir::recorded_inputs(const std::string &name, FrameInputs &inputs) const
+{
+    auto it = frames_.find(name);
+    if (it == frames_.end() || it->second.inputs.empty())
+        return false;
+    auto set = inputs_.find(it->second.inputs);
+    if (set == inputs_.end()) {
+        inputs = FrameInputs();
+        inputs.known = false;   // "-", or a set cut short
+    } else {
+        inputs = set->second;
+    }
+    return true;
+}
+
+bool OutputDir::append(int fd, const std::string &path, const std::string &text,
+                       std::string &err)
+{
+    ssize_t n = write(fd, text.data(), text.size());
+    if (n != ssize_t(text.size())) {
+        if (n >= 0)
+            errno = ENOSPC;
+        return sys_fail(err, "write " + path);
+    }
+    return true;
+}
+
 bool OutputDir::recorded(const std::string &name, uint64_t &hash, bool &words) const
 {
     auto it = frames_.find(name);
@@ -191,21 +264,32 @@ bool OutputDir::recorded(const std::string &name, uint64_t &hash, bool &words) c
     return true;
 }
 
-bool OutputDir::record(const std::string &name, uint64_t hash, std::string &err)
+bool OutputDir::record(const std::string &name, uint64_t hash, const FrameInputs &inputs,
+                       std::string &err)
 {
-    std::string line = strf("%s w1 %016" PRIx64 "\n", name.c_str(), hash);
-    ssize_t n = write(journal_fd_, line.data(), line.size());
-    if (n != ssize_t(line.size())) {
-        if (n >= 0)
-            errno = ENOSPC;
-        return sys_fail(err, "write " + journal_path());
+    std::string id = inputs.id();
+    if (!id.empty() && !inputs_.count(id)) {
+        std::string lines;
+        for (const FrameInputs::File &f : inputs.files)
+            lines += id + (f.read ? strf("\tF\t%016llx\t", (unsigned long long)f.contents)
+                                  : std::string("\tA\t-\t")) +
+                     one_line(f.path) + "\n";
+        if (!append(inputs_fd_, inputs_path(), lines, err))
+            return false;
+        inputs_[id] = inputs;
     }
-    frames_[name] = Recorded{hash, true};
+    std::string line = strf("%s w2 %016" PRIx64 " %s\n", name.c_str(), hash,
+                            id.empty() ? "-" : id.c_str());
+    if (!append(journal_fd_, journal_path(), line, err))
+        return false;
+    frames_[name] = Recorded{hash, true, id.empty() ? "-" : id};
     return true;
 }
 
 bool OutputDir::sync_records(std::string &err)
 {
+    if (inputs_fd_ >= 0 && fdatasync(inputs_fd_) != 0)
+        return sys_fail(err, "fdatasync " + inputs_path());
     if (journal_fd_ < 0 || fdatasync(journal_fd_) == 0)
         return true;
     return sys_fail(err, "fdatasync " + journal_path());

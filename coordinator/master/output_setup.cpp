@@ -2,6 +2,7 @@
 #include "output_setup.h"
 
 #include <cstdio>
+#include <map>
 
 #include "files.h"
 #include "hashes.h"
@@ -25,14 +26,7 @@ Manifest make_manifest(const RenderPlan &plan)
         "Fatal_Error_Return"};
     Manifest m;
     m["renderer"] = plan.scene.banner.empty() ? plan.renderer : plan.scene.banner;
-    auto in = plan.resolved.find("Input_File_Name");
-    std::string scene = in == plan.resolved.end() ? "" : in->second;
-    std::string path = !scene.empty() && scene[0] == '/' ? scene : plan.cwd + "/" + scene;
-    m["scene"] = absolute_path(path);
-    std::string text, err;
-    m["scene contents"] = read_text(path, text, err)
-                              ? strf("%016llx", (unsigned long long)hash_bytes(text.data(), text.size()))
-                              : "(unreadable)";
+    m["scene"] = plan.scene_path;
     for (auto &kv : plan.resolved) {
         bool harmless = false;
         for (const char *h : kHarmless)
@@ -43,14 +37,54 @@ Manifest make_manifest(const RenderPlan &plan)
     return m;
 }
 
+FrameInputs scene_inputs(const RenderPlan &plan, InputHashes &hashes)
+{
+    FrameInputs in;
+    FrameInputs::File scene;
+    scene.path = plan.scene_path;
+    in.files.push_back(scene);
+    hashes.fill(in);
+    return in;
+}
+
 namespace {
 
-// Which frames the output directory already holds, complete and correct.
-bool resume_frames(const Options &opt, const std::string &outdir, bool fresh, bool adopt,
-                   FrameBook &book, Preview &preview, RunStats &stats, std::vector<bool> &replace)
+// The manifest key of the scene file's contents in records of earlier versions, before the
+// contents of every file a frame read were recorded with the frame.
+const char *const kLegacySceneContents = "scene contents";
+
+// Why a frame whose file is complete and correct is not kept: its inputs are not as they were
+// (empty: they are).
+std::string inputs_changed(const FrameFiles &files, const OutputDir &dir, int index,
+                           const RenderPlan &plan, const std::string &legacy, InputHashes &hashes)
+{
+    FrameInputs recorded;
+    if (dir.recorded_inputs(base_name(files.final_path(index)), recorded)) {
+        std::vector<std::string> changed = hashes.changed(recorded);
+        if (changed.empty())
+            return "";
+        std::string what = changed[0];
+        if (changed.size() > 1)
+            what += strf(" and %zu more", changed.size() - 1);
+        return "its inputs changed: " + what;
+    }
+    // An earlier version recorded only the scene's contents, in the manifest.
+    std::string text, err;
+    if (!legacy.empty() && read_text(plan.scene_path, text, err) &&
+        legacy == strf("%016llx", (unsigned long long)hash_bytes(text.data(), text.size())))
+        return "";
+    return "its inputs changed: " + plan.scene_path;
+}
+
+// Which frames the output directory already holds, complete and correct, from the same inputs.
+bool resume_frames(const Options &opt, const RenderPlan &plan, const std::string &outdir,
+                   bool fresh, bool adopt, const std::string &legacy, FrameBook &book,
+                   Preview &preview, RunStats &stats, InputHashes &hashes,
+                   std::vector<bool> &replace)
 {
     FrameFiles &files = book.files();
     std::vector<std::string> damaged;
+    std::map<std::string, int> changed;     // why -> frames
     int adopted = 0;
     for (int i = 0; i < book.count(); i++) {
         std::string path = files.final_path(i);
@@ -64,11 +98,21 @@ bool resume_frames(const Options &opt, const std::string &outdir, bool fresh, bo
                 damaged.push_back(base_name(path) + " again: " + why);
             continue;
         }
+        if (!adopt) {
+            why = inputs_changed(files, files.dir(), i, plan, legacy, hashes);
+            if (!why.empty()) {
+                replace[size_t(i)] = true;
+                changed[why]++;
+                continue;
+            }
+        }
         book.resumed(i);
         stats.frame_resumed(i);
         if (adopt) {
+            // Made without a record: from the scene as it is now.
             std::string err;
-            if (!files.dir().record(base_name(path), FrameFiles::pixels_hash(pixels), err)) {
+            if (!files.dir().record(base_name(path), FrameFiles::pixels_hash(pixels),
+                                    scene_inputs(plan, hashes), err)) {
                 fprintf(stderr, "fc-master: %s\n", err.c_str());
                 return false;
             }
@@ -76,6 +120,9 @@ bool resume_frames(const Options &opt, const std::string &outdir, bool fresh, bo
         }
         preview.add(i, pixels);
     }
+    for (auto &kv : changed)
+        fprintf(stderr, "fc-master: rendering %d frame(s) again: %s\n", kv.second,
+                kv.first.c_str());
     for (size_t k = 0; k < damaged.size() && k < 5; k++)
         fprintf(stderr, "fc-master: warning: rendering %s\n", damaged[k].c_str());
     if (damaged.size() > 5)
@@ -143,14 +190,18 @@ bool check_space(const std::string &outdir, const RenderPlan &plan, FrameEncoder
 } // namespace
 
 bool prepare_output(const Options &opt, const RenderPlan &plan, OutputDir &dir,
-                    FrameEncoder &encoder, FrameBook &book, Preview &preview, RunStats &stats)
+                    FrameEncoder &encoder, FrameBook &book, Preview &preview, RunStats &stats,
+                    InputHashes &hashes)
 {
     const std::string &outdir = dir.path();
     // Frames of another render (scene, options or renderer changed) must not be mixed in.
+    // The scene's contents are no longer the manifest's: every frame records its inputs.
     Manifest now = make_manifest(plan);
     std::vector<std::string> diffs;
     if (dir.has_previous())
-        diffs = dir.differences(now);
+        for (const std::string &d : dir.differences(now))
+            if (!starts_with(d, std::string(kLegacySceneContents) + " is gone"))
+                diffs.push_back(d);
     int present = 0;
     for (int i = 0; i < book.count(); i++)
         present += file_exists(book.files().final_path(i)) ? 1 : 0;
@@ -170,6 +221,8 @@ bool prepare_output(const Options &opt, const RenderPlan &plan, OutputDir &dir,
     // Frames in a directory without a record (written by POV-Ray itself, or by an older
     // fc-master) are kept when they decode completely; with a record, only recorded ones.
     bool adopt = !dir.has_previous() && !fresh;
+    auto old = dir.previous().find(kLegacySceneContents);
+    std::string legacy = old == dir.previous().end() ? "" : old->second;
     std::string err;
     if (!dir.start_run(now, fresh, err)) {
         fprintf(stderr, "fc-master: output directory %s is not writable: %s\n", outdir.c_str(),
@@ -177,7 +230,8 @@ bool prepare_output(const Options &opt, const RenderPlan &plan, OutputDir &dir,
         return false;
     }
     std::vector<bool> replace(size_t(book.count()), false);
-    return resume_frames(opt, outdir, fresh, adopt, book, preview, stats, replace) &&
+    return resume_frames(opt, plan, outdir, fresh, adopt, legacy, book, preview, stats, hashes,
+                         replace) &&
            check_space(outdir, plan, encoder, book, preview, replace);
 }
 

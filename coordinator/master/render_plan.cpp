@@ -140,6 +140,9 @@ bool make_render_plan(const Options &opt, RenderPlan &plan, std::string &err)
         if (block > 0)
             plan.extra.push_back(strf("Render_Block_Size=%d", block));
     }
+    std::string scene = resolved_value(plan.resolved, "Input_File_Name", "");
+    plan.scene_path = absolute_path(!scene.empty() && scene[0] == '/' ? scene
+                                                                      : plan.cwd + "/" + scene);
     read_shellouts(plan.resolved, plan.shellouts);
     plan.shellouts.permitted = plan.scene.shellouts_permitted;
     plan.shellouts.width = plan.scene.width;

@@ -23,6 +23,7 @@ struct RenderPlan {
     std::vector<std::string> format_options;
     std::vector<std::string> extra;
     SceneInfo scene;
+    std::string scene_path;                 // the scene file (Input_File_Name), absolute
     ResolvedOptions resolved;               // POV-Ray's resolved options (Create_Ini)
     OutputFormat format;
     std::vector<Rect> tiles;
