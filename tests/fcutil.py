@@ -16,7 +16,7 @@ SCENES = TOP / "scenes"
 # 11 s on one processor of the eighteenth session's machine (24 frames, deep anti-aliasing).
 # For tests that act while a render runs (a preview's first write 5 s in, a host added 1 s
 # in); shorter renders ended too close to those moments on a fast machine.
-LONG_COORDINATOR_RENDER = ["+W320", "+H240", "+KFI1", "+KFF24", "+A0.1", "+AM2", "+R4"]
+LONG_COORDINATOR_RENDER = ["+FT", "+W320", "+H240", "+KFI1", "+KFF24", "+A0.1", "+AM2", "+R4"]
 
 
 def render(binary, scene, out_file, *options, cwd=None, timeout=600, threads=None, env=None):

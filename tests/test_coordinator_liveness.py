@@ -87,7 +87,7 @@ def test_endless_frame_is_reported_and_keep_going_renders_the_rest(
         coordinator, coordinator_references, tmp_path):
     out = tmp_path / "out"
     scene = frame_scene(tmp_path, "endless.pov", "#while (1) #end")
-    options = ["+W160", "+H120", "+KFI1", "+KFF8"]
+    options = ["+FT", "+W160", "+H120", "+KFI1", "+KFF8"]
     r = coordinator.run(PATIENT + ["--keep-going", "--no-fc", "--division", "sequence",
                                    "--slaves", "2", str(scene)] + options + ["-o", str(out)],
                         cwd=tmp_path, timeout=150)
@@ -103,7 +103,7 @@ def test_endless_frame_is_reported_and_keep_going_renders_the_rest(
 def test_scene_error_at_one_frame(coordinator, coordinator_references, tmp_path):
     out = tmp_path / "out"
     scene = frame_scene(tmp_path, "broken5.pov", '#error "frame five is broken"')
-    options = ["+W160", "+H120", "+KFI1", "+KFF8"]
+    options = ["+FT", "+W160", "+H120", "+KFI1", "+KFF8"]
     args = ["--no-fc", "--division", "frame", "--slaves", "2", str(scene)] + options
     # Without --keep-going the render stops at the error, POV-Ray's message and frame named.
     r = coordinator.run(args + ["-o", str(out)], cwd=tmp_path)
@@ -174,7 +174,7 @@ def test_stopped_pvmd_is_named_with_what_to_do(coordinator, tmp_path):
     pvmd = start_shared_pvmd(coordinator)
     os.kill(pvmd, signal.SIGSTOP)
     try:
-        r = coordinator.run(["--no-fc", SCENE] + ["+W64", "+H48", "+KFI1", "+KFF2"] +
+        r = coordinator.run(["--no-fc", SCENE] + ["+FT", "+W64", "+H48", "+KFI1", "+KFF2"] +
                             ["-o", str(tmp_path / "out")], env={"PVM_ALLOW_ROOT": "1"}, timeout=30)
     finally:
         os.kill(pvmd, signal.SIGKILL)
@@ -192,7 +192,7 @@ def test_hung_pvmd_never_hangs_the_master(coordinator, tmp_path, stop):
     pvmd = start_shared_pvmd(coordinator)
     with Freezer("fc-test-" + coordinator.mark):
         Freezer("fc-test-" + coordinator.mark).freeze(pvmd)
-        p = coordinator.start(["--no-fc", SCENE, "+W64", "+H48", "+KFI1", "+KFF2", "-o",
+        p = coordinator.start(["--no-fc", SCENE, "+FT", "+W64", "+H48", "+KFI1", "+KFF2", "-o",
                                str(tmp_path / "out")], env={"PVM_ALLOW_ROOT": "1"})
         if stop:
             time.sleep(2)       # into the pvmd's silence

@@ -21,8 +21,8 @@ pytestmark = pytest.mark.usefixtures("coordinator_build")
 
 SCRIPT = os.path.join(TOP, "scripts", "pvm-netns-hosts.sh")
 SCENE = "moving.pov"
-OPTS = ["+W160", "+H120", "+KFI1", "+KFF12"]
-SLOW = ["+W320", "+H240", "+KFI1", "+KFF24", "+A0.1", "+AM2", "+R3"]
+OPTS = ["+FT", "+W160", "+H120", "+KFI1", "+KFF12"]
+SLOW = ["+FT", "+W320", "+H240", "+KFI1", "+KFF24", "+A0.1", "+AM2", "+R3"]
 
 
 def netns_usable():

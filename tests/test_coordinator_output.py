@@ -23,9 +23,9 @@ from fcutil import LONG_COORDINATOR_RENDER, TOP
 pytestmark = pytest.mark.usefixtures("coordinator_build")
 
 SCENE = "moving.pov"
-SMALL = ["+W160", "+H120", "+KFI1", "+KFF8"]
+SMALL = ["+FT", "+W160", "+H120", "+KFI1", "+KFF8"]
 # 24 Targa frames of 225 KB; about 0.2 s a frame per process.
-SLOW = ["+W320", "+H240", "+KFI1", "+KFF24", "+A0.1", "+AM2", "+R3"]
+SLOW = ["+FT", "+W320", "+H240", "+KFI1", "+KFF24", "+A0.1", "+AM2", "+R3"]
 
 root_only = pytest.mark.skipif(os.geteuid() != 0, reason="needs root to mount tmpfs")
 
@@ -524,30 +524,37 @@ def test_image_writer_refuses_malformed_requests(tmp_path):
 
 
 OUTPUT_NAMES = {
-    # +Orenders/clk.png names PNG frames clk1.png ... as POV-Ray does, not clk.png1.tga; with
-    # no format named, the name's extension chooses it (Targa stays the default otherwise).
-    "png-named": (["+FN", "+Orenders/clk.png"], "clk%d.png", ["+FN"], "moving%d.png"),
-    "png-from-name": (["+Orenders/clk.png"], "clk%d.png", ["+FN"], "moving%d.png"),
-    "exr-from-name": (["+Orenders/clk.exr"], "clk%d.exr", ["+FE"], "moving%d.exr"),
-    # Targa named: POV-Ray keeps a foreign extension and adds its own.
-    "targa-named": (["+FT", "+Orenders/clk.png"], "clk.png%d.tga", [], "moving%d.tga"),
+    # The names and format one povray-fc process gives the frames: +Orenders/clk.png names PNG
+    # frames clk1.png ...; with no format named, POV-Ray's povray.ini chooses it (Debian's:
+    # PNG), not the name; Targa named keeps a foreign extension and adds its own.
+    "png-named": ["+FN", "+Orenders/clk.png"],
+    "format-from-povray-ini": ["+Orenders/clk.png"],
+    "exr-named": ["+FE", "+Orenders/clk.exr"],
+    "foreign-extension": ["+Orenders/clk.exr"],
+    "targa-named": ["+FT", "+Orenders/clk.png"],
 }
 
 
 @pytest.mark.parametrize("name", sorted(OUTPUT_NAMES))
-def test_output_name_with_extension(coordinator, coordinator_references, tmp_path, name):
-    opts, pattern, ref_opts, ref_pattern = OUTPUT_NAMES[name]
+def test_output_names_and_format_as_povray_fc(coordinator, tmp_path, name):
+    opts = SMALL[1:] + OUTPUT_NAMES[name]   # no +FT: the options alone name the format
+    scene = os.path.join(COORDINATOR_SCENES, SCENE)
+    single, master = tmp_path / "single", tmp_path / "master"
+    (single / "renders").mkdir(parents=True)      # POV-Ray does not create it
+    master.mkdir()
+    r = subprocess.run([coordinator_renderer(), scene, "-D"] + opts, cwd=single,
+                       capture_output=True, text=True, timeout=120)
+    assert r.returncode == 0, r.stderr[-2000:]
+    want = sorted(os.listdir(single / "renders"))
+    assert len(want) == 8, want
     # From another directory, without -o: the frames go where POV-Ray would write them.
-    r = coordinator.run(["--no-fc", "--quiet", os.path.join(COORDINATOR_SCENES, SCENE)] +
-                        SMALL + opts, cwd=tmp_path)
+    r = coordinator.run(["--no-fc", "--quiet", scene] + opts, cwd=master)
     assert r.returncode == 0, r.stderr
-    out = tmp_path / "renders"
-    assert frame_files(out) == sorted(pattern % n for n in range(1, 9))
-    pixel_type = "half" if pattern.endswith(".exr") else "uint8"
-    ref = coordinator_references.frames(SCENE, SMALL + ref_opts, pixel_type)
-    for n in range(1, 9):
-        got = load_rgb(out / (pattern % n), pixel_type)
-        assert (got == ref[ref_pattern % n]).all(), pattern % n
+    assert frame_files(master / "renders") == want
+    for f in want:
+        pixel_type = "half" if f.endswith(".exr") else "uint8"
+        got = load_rgb(master / "renders" / f, pixel_type)
+        assert (got == load_rgb(single / "renders" / f, pixel_type)).all(), f
 
 
 @pytest.mark.parametrize("opt,words", [

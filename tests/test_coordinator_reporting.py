@@ -23,7 +23,7 @@ from conftest import (COORDINATOR_SCENES, coordinator_renderer, coordinator_stat
 pytestmark = pytest.mark.usefixtures("coordinator_build")
 
 SCENE = "moving.pov"
-SLOW = ["+W320", "+H240", "+KFI1", "+KFF16", "+A0.1", "+AM2", "+R3"]
+SLOW = ["+FT", "+W320", "+H240", "+KFI1", "+KFF16", "+A0.1", "+AM2", "+R3"]
 
 
 class Terminal:
@@ -205,7 +205,7 @@ def test_summary_and_stats_of_a_run(coordinator, tmp_path):
 def test_stats_of_a_failed_run_keep_the_error(coordinator, tmp_path):
     out, stats = tmp_path / "out", tmp_path / "stats.json"
     r = coordinator.run(["--no-fc", "--division", "sequence", "--slaves", "2", "--stats",
-                         str(stats), "fails-late.pov", "+W64", "+H48", "+KFI1", "+KFF8", "-o",
+                         str(stats), "fails-late.pov", "+FT", "+W64", "+H48", "+KFI1", "+KFF8", "-o",
                          str(out)])
     assert r.returncode == 1
     s = coordinator_stats(stats)

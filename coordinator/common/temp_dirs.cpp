@@ -16,6 +16,15 @@
 
 namespace fc {
 
+std::string temp_root()
+{
+    const char *t = getenv("TMPDIR");
+    struct stat st;
+    if (t && *t && stat(t, &st) == 0 && S_ISDIR(st.st_mode))
+        return t;
+    return "/tmp";
+}
+
 bool make_temp_dir(const std::string &parent, const std::string &prefix, std::string &dir,
                    std::string &err)
 {

@@ -6,6 +6,9 @@
 
 namespace fc {
 
+// Where private directories go: $TMPDIR when it names a directory, else /tmp.
+std::string temp_root();
+
 // Create a fresh private directory "<parent>/<prefix>XXXXXX"; on success dir holds its path.
 bool make_temp_dir(const std::string &parent, const std::string &prefix, std::string &dir,
                    std::string &err);

@@ -50,6 +50,15 @@ void Master::warn(const std::string &message)
     fprintf(stderr, "fc-master: warning: %s\n", message.c_str());
 }
 
+// What a shell-out has to say besides its result (POV-Ray's line on a prohibited command).
+void Master::tell(const ShelloutResult &r)
+{
+    if (r.notice.empty())
+        return;
+    report_.clear_line();
+    fprintf(stderr, "fc-master: %s\n", r.notice.c_str());
+}
+
 // Cut the frames into ranges once the slaves we started said hello (or 5 s passed): sequence
 // division gives each its own range.
 void Master::plan_if_ready()
@@ -79,6 +88,7 @@ bool Master::run_pre_frame(const Job &job)
     int frame = book_->number(job.index);
     ShelloutResult r = plan_.shellouts.run(Shellouts::PreFrame, frame,
                                            files_->final_path(job.index));
+    tell(r);
     switch (r.action) {
     case ShelloutResult::Continue:
         return true;
@@ -184,7 +194,6 @@ void Master::on_hello(int src)
     setup.renderer = plan_.renderer;
     setup.cwd = plan_.cwd;
     setup.options = opt_.pov;
-    // The format first: the user named none when it is set.
     setup.extra = plan_.format_options;
     setup.extra.insert(setup.extra.end(), plan_.extra.begin(), plan_.extra.end());
     setup.width = plan_.scene.width;
@@ -325,6 +334,7 @@ bool Master::frame_written(int index, std::vector<uint8_t> &samples)
     stats_.frame_written(index, now() - start_);
     ShelloutResult r = plan_.shellouts.run(Shellouts::PostFrame, book_->number(index),
                                            files_->final_path(index));
+    tell(r);
     if (r.action == ShelloutResult::Fatal) {
         fatal(r.message);
         return false;

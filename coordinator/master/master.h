@@ -82,6 +82,7 @@ private:
 
     // What the user sees (master.cpp).
     void warn(const std::string &message);
+    void tell(const ShelloutResult &r);
     void progress();
     void flush_preview(bool force);
     // Seconds since the loop began, the share of this run's tiles done, and the estimated

@@ -132,6 +132,7 @@ int Master::run()
     }
     ShelloutResult pre = plan_.shellouts.run(Shellouts::PreScene, plan_.scene.frames.front(),
                                              files_->final_path(0));
+    tell(pre);
     if (pre.action != ShelloutResult::Continue) {
         fprintf(stderr, "fc-master: %s\n", pre.message.c_str());
         return pre.action == ShelloutResult::Quit ? 0 : 1;
@@ -153,6 +154,7 @@ int Master::run()
         int last = book_->count() - 1;
         ShelloutResult post = plan_.shellouts.run(Shellouts::PostScene, book_->number(last),
                                                   files_->final_path(last));
+        tell(post);
         if (post.action == ShelloutResult::Fatal) {
             fprintf(stderr, "fc-master: %s\n", post.message.c_str());
             rc = 1;

@@ -51,6 +51,17 @@ bool OutputDir::open(const std::string &dir, const std::string &run, std::string
         err = "output directory " + dir + ": " + why;
         return false;
     }
+    // The frames go into dir itself: a file is created there (its record's folder may be
+    // writable where dir is not, another file system mounted on it).
+    std::string probe = dir + strf("/.fc-master-write-test-%d", int(getpid()));
+    int fd = ::open(probe.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC, 0644);
+    if (fd < 0) {
+        sys_fail(why, "create " + probe);
+        err = "output directory " + dir + " is not writable: " + why;
+        return false;
+    }
+    close(fd);
+    unlink(probe.c_str());
     meta_ = dir + "/" + kMetaDir;
     if (mkdir(meta_.c_str(), 0755) != 0 && errno != EEXIST) {
         sys_fail(why, "mkdir " + meta_);

@@ -35,9 +35,9 @@ class OutputDir {
 public:
     ~OutputDir();
 
-    // Create dir and its parents, prove it writable by creating DIR/.fc-master and its lock,
-    // take the lock and read the record of `run`. False with err (strerror text; another
-    // master's pid when locked).
+    // Create dir and its parents, prove it writable by creating a file in it and
+    // DIR/.fc-master and its lock, take the lock and read the record of `run`. False with err
+    // (strerror text; another master's pid when locked).
     bool open(const std::string &dir, const std::string &run, std::string &err);
 
     const std::string &path() const { return dir_; }

@@ -1,6 +1,8 @@
 // output_format.cpp - the output format from POV-Ray's resolved options (see output_format.h).
 #include "output_format.h"
 
+#include <unistd.h>
+
 #include <algorithm>
 #include <cctype>
 #include <cstdlib>
@@ -23,7 +25,7 @@ bool diffusion(const ResolvedOptions &ini)
 }
 
 const char *const kSupported =
-    "fc-master writes Targa (+FT, the default), RLE Targa (+FC), PNG (+FN) and OpenEXR (+FE)";
+    "fc-master writes Targa (+FT), RLE Targa (+FC), PNG (+FN) and OpenEXR (+FE)";
 
 } // namespace
 
@@ -100,14 +102,36 @@ bool output_format(const ResolvedOptions &ini, OutputFormat &f, std::string &err
     return true;
 }
 
-std::string format_from_name(const ResolvedOptions &ini)
+bool frame_size_possible(const OutputFormat &f, const std::string &encoding, int width, int height,
+                         double memory_bytes, std::string &err)
 {
-    std::string name = resolved_value(ini, "Output_File_Name", "");
-    auto ends = [&](const char *ext) {
-        size_t n = strlen(ext);
-        return name.size() > n && name.compare(name.size() - n, n, ext) == 0;
-    };
-    return ends(".png") ? "+FN" : ends(".exr") ? "+FE" : "+FT";
+    if (f.oiio == "targa" && (width > 65535 || height > 65535)) {
+        err = strf("a %s frame holds at most 65535 pixels a side, not %dx%d: use PNG (+FN) or "
+                   "OpenEXR (+FE)", f.name.c_str(), width, height);
+        return false;
+    }
+    double pixels = double(width) * double(height);
+    double sample = double(pixel_type_bytes(f.pixels));
+    // The samples, the file of about their size, and the unquantized floats of diffusion.
+    double need = pixels * 3 * sample * 2 + (encoding == "rgbf" ? pixels * 12 : 0);
+    if (memory_bytes > 0 && need > memory_bytes) {
+        err = strf("a frame of %dx%d pixels needs %s of fc-master's memory (its samples and its "
+                   "file), more than this machine's %s", width, height, human_bytes(need).c_str(),
+                   human_bytes(memory_bytes).c_str());
+        return false;
+    }
+    return true;
+}
+
+double machine_memory()
+{
+    long pages = sysconf(_SC_PHYS_PAGES), size = sysconf(_SC_PAGESIZE);
+    return pages > 0 && size > 0 ? double(pages) * double(size) : 0;
+}
+
+std::string format_option(const OutputFormat &f)
+{
+    return f.type == 'N' ? strf("+FN%d", f.bits) : strf("+F%c", f.type);
 }
 
 std::string channel_encoding(const ResolvedOptions &ini, const OutputFormat &f)

@@ -1,8 +1,8 @@
 // output_format.h - the image format fc-master writes: the one POV-Ray would write with the
 // same options, or a clear refusal.
 //
-// Targa (uncompressed) is the default, as in the paper: fc-master puts +FT before the user's
-// options, so a format on the command line or in an INI file given there wins. Supported:
+// The format is POV-Ray's resolved Output_File_Type: what one povray-fc process writes with
+// the same options and INI files (povray.ini included; Debian's says PNG). Supported:
 // Targa (+FT), RLE Targa (+FC), PNG (+FN, 5 to 16 bits per colour as POV-Ray stores them) and
 // OpenEXR (+FE, half floats, linear). The renderer's frame channel carries each format's
 // stored values (patch 0030), so the frames equal what one POV-Ray process writes.
@@ -32,9 +32,19 @@ struct OutputFormat {
 // at other than 8 bits, no output file.
 bool output_format(const ResolvedOptions &ini, OutputFormat &format, std::string &err);
 
-// The format option for a user who named no format: +FN when Output_File_Name ends in
-// ".png", +FE for ".exr" (as POV-Ray compares them: lower case), else +FT.
-std::string format_from_name(const ResolvedOptions &ini);
+// Whether frames of width x height can be written at all, before anything renders: Targa holds
+// at most 65535 pixels a side, and fc-master holds a frame in memory (its stored samples, and
+// under diffusion dithering the unquantized values) and its file while it writes it, which
+// must fit in memory_bytes (the machine's). False with a one-line reason.
+bool frame_size_possible(const OutputFormat &format, const std::string &channel_encoding,
+                         int width, int height, double memory_bytes, std::string &err);
+
+// This machine's memory, bytes.
+double machine_memory();
+
+// The option that names this format (+FT, +FC, +FN8 ... +FN16, +FE): what the slaves'
+// renderers get, so that they write what the master resolved whatever their own povray.ini.
+std::string format_option(const OutputFormat &format);
 
 // The frame-channel encoding the renderer sends for these options (patch 0030): "rgbf" under
 // diffusion dithering, else the format's own.

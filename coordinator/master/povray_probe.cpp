@@ -3,10 +3,12 @@
 #include "povray_probe.h"
 
 #include <poll.h>
+#include <unistd.h>
 #include <sys/wait.h>
 
 #include <algorithm>
 #include <cctype>
+#include <cerrno>
 #include <cstdio>
 #include <cstring>
 #include <fstream>
@@ -85,15 +87,48 @@ std::string frame_file_name(const std::string &stem, int digits, int frame, cons
     return stem + strf("%0*d", digits, frame) + ext;
 }
 
-bool probe_scene(const std::string &renderer, const std::string &format,
-                 const std::vector<std::string> &options, const std::string &cwd,
-                 const std::string &tmpdir, double timeout, SceneInfo &info, std::string &err)
+bool find_bad_option(const std::string &renderer, const std::vector<std::string> &options,
+                     const std::string &cwd, double timeout, std::string &err)
+{
+    // A file named on the command line (an INI file or the scene) that is not there.
+    for (const std::string &o : options) {
+        if (o.empty() || o[0] == '+' || o[0] == '-' || o.find('=') != std::string::npos)
+            continue;
+        std::string path = o[0] == '/' ? o : cwd + "/" + o;
+        if (access(path.c_str(), R_OK) != 0) {
+            err = strf("%s: %s (an INI file or scene named on the command line)", o.c_str(),
+                       strerror(errno));
+            return true;
+        }
+    }
+    // A switch POV-Ray cannot take: tried alone, it fails the same way (-D: no display).
+    for (const std::string &o : options) {
+        if (o.empty() || (o[0] != '+' && o[0] != '-'))
+            continue;
+        std::vector<std::string> lines;
+        int status = 0;
+        std::string ignored;
+        if (!run_collect({renderer, "-D", o, "-I/dev/null/none"}, cwd, timeout, lines, status,
+                         ignored))
+            continue;
+        for (const std::string &l : lines)
+            if (l.find("Failed to parse command-line option") != std::string::npos) {
+                err = "POV-Ray does not take the option " + o +
+                      " (\"Failed to parse command-line option\")";
+                return true;
+            }
+    }
+    return false;
+}
+
+bool probe_scene(const std::string &renderer, const std::vector<std::string> &options,
+                 const std::string &cwd, const std::string &tmpdir, double timeout,
+                 SceneInfo &info, std::string &err)
 {
     std::string inc = tmpdir + "/fc-probe.inc";
     if (!write_text(inc, strf("#error \"%s\"\n", kProbeMarker), err))
         return false;
-    // The format goes before the user's options: it holds unless they name another.
-    std::vector<std::string> argv = {renderer, format};
+    std::vector<std::string> argv = {renderer};
     argv.insert(argv.end(), options.begin(), options.end());
     argv.insert(argv.end(), {"-D", "-UA", "+HI" + inc});
     for (const char *cmd : kShelloutOptions)
@@ -143,6 +178,10 @@ bool probe_scene(const std::string &renderer, const std::string &format,
     }
     if (!marker || !have_res || !have_out) {
         std::string excerpt = failure_excerpt(lines);
+        // POV-Ray does not say which option it could not take: find it.
+        if (excerpt.find("Failed to parse command-line option") != std::string::npos &&
+            find_bad_option(renderer, options, cwd, timeout, err))
+            return false;
         err = strf("%s rejected the scene or its options (%s):\n%s", renderer.c_str(),
                   describe_status(status).c_str(), excerpt.c_str());
         return false;
@@ -213,13 +252,12 @@ bool option_is_on(const std::string &value)
     return s == "on" || s == "true" || s == "yes" || s == "1";
 }
 
-bool probe_resolved_options(const std::string &renderer, const std::string &format,
-                            const std::vector<std::string> &options, const std::string &cwd,
-                            const std::string &tmpdir, double timeout, ResolvedOptions &out,
-                            std::string &err)
+bool probe_resolved_options(const std::string &renderer, const std::vector<std::string> &options,
+                            const std::string &cwd, const std::string &tmpdir, double timeout,
+                            ResolvedOptions &out, std::string &err)
 {
     std::string ini = tmpdir + "/resolved.ini";
-    std::vector<std::string> argv = {renderer, format};
+    std::vector<std::string> argv = {renderer};
     argv.insert(argv.end(), options.begin(), options.end());
     argv.push_back("+GI" + ini);
     argv.push_back("Frame_Channel=" + tmpdir + "/no-such-directory/channel");

@@ -36,18 +36,23 @@ struct SceneInfo {
     bool shellouts_permitted = false;   // povray.conf allows shell-out commands
 };
 
-// Run `renderer FORMAT options... -D -UA +HI<probe.inc>` in cwd (FORMAT, e.g. +FT, is the
-// format unless the options name one; tmpdir holds the probe include,
-// it must be readable under POV-Ray's I/O restrictions, e.g. below /tmp), with the user's
+// Run `renderer options... -D -UA +HI<probe.inc>` in cwd (tmpdir holds the probe include, it
+// must be readable under POV-Ray's I/O restrictions, e.g. below /tmp), with the user's
 // shell-outs replaced (the probe must not run them) and a harmless pre-scene command that
 // tells whether povray.conf allows shell-outs. On success fills info; on failure err holds
 // POV-Ray's own error lines. Fills all but the names and frames (split_output_name, set_frames).
-bool probe_scene(const std::string &renderer, const std::string &format,
-                 const std::vector<std::string> &options, const std::string &cwd,
-                 const std::string &tmpdir, double timeout, SceneInfo &info, std::string &err);
+bool probe_scene(const std::string &renderer, const std::vector<std::string> &options,
+                 const std::string &cwd, const std::string &tmpdir, double timeout,
+                 SceneInfo &info, std::string &err);
+
+// When POV-Ray says only "Failed to parse command-line option": which of the user's options it
+// was (a file named that is not there, or a switch that fails alone), in err. False when none
+// can be told.
+bool find_bad_option(const std::string &renderer, const std::vector<std::string> &options,
+                     const std::string &cwd, double timeout, std::string &err);
 
 // POV-Ray's resolved options as its Create_Ini writes them (key -> value, quotes removed):
-// runs `renderer FORMAT options... +GI<ini> Frame_Channel=<a path that cannot be opened>`, which
+// runs `renderer options... +GI<ini> Frame_Channel=<a path that cannot be opened>`, which
 // writes the INI file and stops before anything runs (patch 0020 opens the channel first).
 // A renderer without the frame channel writes none and is refused here.
 typedef std::map<std::string, std::string> ResolvedOptions;
@@ -58,10 +63,9 @@ std::string resolved_value(const ResolvedOptions &ini, const char *key, const ch
 
 // Whether an INI switch's value is on (POV-Ray takes on, true, yes and 1, in any case).
 bool option_is_on(const std::string &value);
-bool probe_resolved_options(const std::string &renderer, const std::string &format,
-                            const std::vector<std::string> &options, const std::string &cwd,
-                            const std::string &tmpdir, double timeout, ResolvedOptions &out,
-                            std::string &err);
+bool probe_resolved_options(const std::string &renderer, const std::vector<std::string> &options,
+                            const std::string &cwd, const std::string &tmpdir, double timeout,
+                            ResolvedOptions &out, std::string &err);
 
 // From the first frame's output name and the format's extension: stem and digits (or a
 // still's single frame). False with err when the name does not fit.

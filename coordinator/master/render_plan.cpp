@@ -60,56 +60,33 @@ bool find_programs(const Options &opt, RenderPlan &plan, std::string &err)
     return true;
 }
 
-// The output is named like a PNG or OpenEXR file (+Oclk.png): unless the user named a format,
-// frames are written in that one, as POV-Ray names PNG frames clk1.png, not clk.png1.tga. The
-// resolved options are asked again with PNG put before the user's options: where the answer
-// differs from the one with Targa before them, the user named no format. (Asked only here:
-// every other output name gives Targa either way, and a start of povray-fc is time on the
-// master's host.)
-bool choose_format_by_name(const Options &opt, const std::string &tmpdir, double limit,
-                           RenderPlan &plan, ResolvedOptions &ini, std::string &err)
-{
-    if (mkdir((tmpdir + "/png").c_str(), 0700) != 0)
-        return sys_fail(err, "mkdir " + tmpdir + "/png");
-    ResolvedOptions png;
-    if (!probe_resolved_options(plan.renderer, "+FN", opt.pov, plan.cwd, tmpdir + "/png", limit,
-                                png, err))
-        return false;
-    if (ini["Output_File_Type"] == png["Output_File_Type"])
-        return true;
-    std::string option = format_from_name(ini);
-    ini["Output_File_Type"] = option.substr(2);
-    plan.format_options = {option};
-    plan.scene = SceneInfo();
-    return probe_scene(plan.renderer, option, opt.pov, plan.cwd, tmpdir, limit, plan.scene, err);
-}
-
 bool ask_povray(const Options &opt, const std::string &tmpdir, RenderPlan &plan,
                 std::string &err)
 {
     // Both questions to POV-Ray at once: each start of povray-fc costs a tenth of a second.
+    // The user's options alone: the format and names are those one povray-fc process with
+    // them writes (its povray.ini included).
     double limit = std::max(30.0, opt.timeout);
     std::string scene_err, ini_err;
     bool ini_ok = false;
     ResolvedOptions ini;
     std::thread resolved([&] {
-        ini_ok = probe_resolved_options(plan.renderer, "+FT", opt.pov, plan.cwd, tmpdir, limit,
-                                        ini, ini_err);
+        ini_ok = probe_resolved_options(plan.renderer, opt.pov, plan.cwd, tmpdir, limit, ini,
+                                        ini_err);
     });
     // OpenImageIO loads meanwhile when frames will need it, while the processors are mostly
     // idle. Not before the thread above: while dlopen() runs, glibc's loader lock stalls
     // every pthread_create.
     FrameEncoder::preload_while_probing(opt.division);
-    bool scene_ok = probe_scene(plan.renderer, "+FT", opt.pov, plan.cwd, tmpdir, limit,
-                                plan.scene, scene_err);
+    bool scene_ok = probe_scene(plan.renderer, opt.pov, plan.cwd, tmpdir, limit, plan.scene,
+                                scene_err);
     resolved.join();
     err = !scene_ok ? scene_err : ini_err;
     if (!scene_ok || !ini_ok)
         return false;
-    if (format_from_name(ini) != "+FT" &&
-        !choose_format_by_name(opt, tmpdir, limit, plan, ini, err))
-        return false;
     if (!output_format(ini, plan.format, err) ||
+        !frame_size_possible(plan.format, channel_encoding(ini, plan.format), plan.scene.width,
+                             plan.scene.height, machine_memory(), err) ||
         !split_output_name(plan.scene, plan.format.ext, err) || !set_frames(plan.scene, ini, err))
         return false;
     plan.resolved = ini;
@@ -123,15 +100,17 @@ bool make_render_plan(const Options &opt, RenderPlan &plan, std::string &err)
     if (!find_programs(opt, plan, err))
         return false;
     std::string tmpdir;
-    remove_stale_dirs("/tmp", "fc-master-");
-    if (!make_temp_dir("/tmp", strf("fc-master-%d-", int(getpid())), tmpdir, err))
+    remove_stale_dirs(temp_root(), "fc-master-");
+    if (!make_temp_dir(temp_root(), strf("fc-master-%d-", int(getpid())), tmpdir, err))
         return false;
     bool ok = ask_povray(opt, tmpdir, plan, err);
     remove_tree(tmpdir);
     if (!ok)
         return false;
-    // A renderer with the frame channel (the shell-out probe needs it) has frame coherence:
-    // the channel's patches come after fc's.
+    // The slaves' renderers write the format resolved here, whatever their host's povray.ini
+    // says. A renderer with the frame channel (the shell-out probe needs it) has frame
+    // coherence: the channel's patches come after fc's.
+    plan.format_options = {format_option(plan.format)};
     if (opt.fc)
         plan.extra.push_back(kFrameCoherenceOption);
     if (opt.division != Division::Sequence) {

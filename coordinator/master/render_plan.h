@@ -18,8 +18,8 @@ struct RenderPlan {
     std::string renderer;                   // absolute path of povray-fc
     std::string slave_program;              // absolute path of fc-slave
     std::string cwd;                        // the master's directory (the slaves' too)
-    // For the slaves' renderers, after the user's options: the format when the user named
-    // none (e.g. +FN), then frame coherence and the render block size.
+    // For the slaves' renderers, after the user's options: the format resolved here (e.g.
+    // +FN8), then frame coherence and the render block size.
     std::vector<std::string> format_options;
     std::vector<std::string> extra;
     SceneInfo scene;
@@ -30,8 +30,8 @@ struct RenderPlan {
     Shellouts shellouts;
 };
 
-// Find the programs and ask POV-Ray (two probes at once, a third when the output name may
-// choose the format). False with err (POV-Ray's own lines when it rejected the scene).
+// Find the programs and ask POV-Ray (two probes at once). False with err (POV-Ray's own lines
+// when it rejected the scene).
 bool make_render_plan(const Options &opt, RenderPlan &plan, std::string &err);
 
 } // namespace fc

@@ -86,13 +86,19 @@ ShelloutResult Shellouts::run(Event event, int frame, const std::string &output)
         int w = system(cmd.c_str());
         status = w == -1 ? -1 : (WIFEXITED(w) ? WEXITSTATUS(w) : 1);
     }
+    std::string program, params;
+    split_command(c.command, program, params);
+    if (!permitted && !told[event]) {
+        // POV-Ray's own line, once per command rather than once per frame.
+        told[event] = true;
+        r.notice = "Execution of shellout '" + program + "' prohibited (povray.conf's "
+                   "[Shellout Security])";
+    }
     bool ok = status == 0;
     if (c.negate)
         ok = !ok;
     if (ok || c.action == 'i')
         return r;
-    std::string program, params;
-    split_command(c.command, program, params);
     std::string why = strf("the %s shell-out ('%s'%s) ", kEventNames[event], program.c_str(),
                            permitted ? "" : ", prohibited by povray.conf");
     switch (c.action) {

@@ -23,6 +23,7 @@ namespace fc {
 struct ShelloutResult {
     enum Action { Continue, SkipFrame, SkipAll, Quit, Fatal } action = Continue;
     std::string message;        // why the render stops or skips
+    std::string notice;         // POV-Ray's line for a prohibited command (the first time)
 };
 
 class Shellouts {
@@ -37,6 +38,7 @@ public:
 
     Command commands[kEvents];
     bool permitted = false;     // povray.conf allows shell-outs
+    mutable bool told[kEvents] = {};    // POV-Ray's line on a prohibited command was shown
     std::string scene;          // scene name without path or extension (%s)
     int width = 0, height = 0;
     double initial_clock = 0, clock_delta = 0;

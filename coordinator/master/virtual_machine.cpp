@@ -191,7 +191,7 @@ const char *const kPrivatePrefix = "fc-pvm-";
 
 void remove_stale_private_vms()
 {
-    remove_stale_dirs("/tmp", kPrivatePrefix);
+    remove_stale_dirs(temp_root(), kPrivatePrefix);
 }
 
 bool VirtualMachine::start(bool force_private, const std::string &hostfile,
@@ -334,7 +334,7 @@ bool VirtualMachine::start_private(const std::string &hostfile, const std::strin
                                    double timeout, std::string &err)
 {
     remove_stale_private_vms();
-    if (!make_temp_dir("/tmp", strf("%s%d-", kPrivatePrefix, int(getpid())), tmpdir_, err))
+    if (!make_temp_dir(temp_root(), strf("%s%d-", kPrivatePrefix, int(getpid())), tmpdir_, err))
         return false;
     // Every program of this virtual machine (pvmd, master, slaves) must see the same PVM_TMP;
     // slaves inherit the pvmd's environment.

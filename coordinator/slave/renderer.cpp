@@ -59,10 +59,9 @@ bool Renderer::start(const RendererConfig &config, int first, std::string &err)
         close(chan[1]);
         return sys_fail(err, "pipe2");
     }
-    // The thread count and the default format (Targa, which the master writes unless the user
-    // names another) go first, so the user's +WT or +F... override them.
-    std::vector<std::string> argv = {config.program, strf("+WT%d", std::max(1, config.threads)),
-                                     "+FT"};
+    // The thread count goes first, so that the user's +WT overrides it; the format the master
+    // resolved comes with its extra options, after the user's.
+    std::vector<std::string> argv = {config.program, strf("+WT%d", std::max(1, config.threads))};
     argv.insert(argv.end(), config.options.begin(), config.options.end());
     argv.insert(argv.end(), config.extra.begin(), config.extra.end());
     std::vector<std::string> ours = slave_options(config, first);

@@ -102,8 +102,8 @@ bool Slave::init(std::string &err)
         err = "pvm_notify(PvmTaskExit, master): " + pvm_error(r);
         return false;
     }
-    remove_stale_dirs("/tmp", "fc-slave-");
-    if (!make_temp_dir("/tmp", strf("fc-slave-%d-", int(getpid())), workdir_, err))
+    remove_stale_dirs(temp_root(), "fc-slave-");
+    if (!make_temp_dir(temp_root(), strf("fc-slave-%d-", int(getpid())), workdir_, err))
         return false;
     Hello h;
     h.host = host_name();
