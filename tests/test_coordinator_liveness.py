@@ -2,7 +2,7 @@
 every frame it can.
 
 A stopped slave or renderer, or a frame that never ends, is noticed by its deadline (learned
-from the run, at least 10 s) and its work copied to another slave; a frame that hangs or fails
+from the run, at least 8 s) and its work copied to another slave; a frame that hangs or fails
 on two hosts is reported with its number and POV-Ray's last words. Each test gives fc-master a
 --timeout far beyond the test's own bound, so that only the progress rules can end the run in
 time. (How fast, measured: scripts/liveness-goals.)

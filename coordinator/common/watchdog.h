@@ -22,7 +22,8 @@
 namespace fc {
 namespace watchdog {
 
-const double kGrace = 0.8;      // seconds a stop signal leaves the main thread to stop
+const double kGrace = 0.7;      // seconds a stop signal leaves the main thread to stop
+                                // (the process must end within a second)
 
 // Start the thread and route the stop signals to it (call once, from main, before other
 // threads). prog names the program in its messages ("fc-master").

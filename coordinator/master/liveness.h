@@ -4,7 +4,8 @@
 //
 // A job is stalled when its slave has not finished it within a deadline learned from the run:
 // kFactor times the median time of its host's recent jobs (scaled to the job's pixels), never
-// less than kFloor seconds; before a job of any host finished, the master's --timeout. A
+// less than kFloor seconds (the goal is to act within max(10 s, 5 times the median frame),
+// and the master looks every 0.25 s); before a job of any host finished, the master's --timeout. A
 // renderer's first frame (with frame coherence traced in full) and a copy of another slave's
 // job (its renderer starts afresh or jumps) get the fresh-start factor on top. A stalled job
 // gets a copy on another slave (schedule.h), and a frame stalled twice hangs.
@@ -19,8 +20,8 @@ namespace fc {
 
 class Liveness {
 public:
-    static constexpr double kFloor = 10.0;      // seconds: no deadline is shorter
-    static constexpr double kFactor = 5.0;      // times the host's median job
+    static constexpr double kFloor = 8.0;       // seconds: no deadline is shorter
+    static constexpr double kFactor = 4.0;      // times the host's median job
     static const size_t kHistory = 31;          // recent jobs per host
 
     // fallback: the deadline before any job finished (the master's --timeout).
