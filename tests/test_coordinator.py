@@ -14,7 +14,7 @@ import time
 import numpy as np
 import pytest
 
-from conftest import (COORDINATOR_SCENES, FC_SLAVE, TOP, coordinator_cmdline,
+from conftest import (COORDINATOR_SCENES, FC_SLAVE, coordinator_cmdline,
                       coordinator_renderer, coordinator_stats, frame_files, load_rgb)
 
 pytestmark = pytest.mark.usefixtures("coordinator_build")
@@ -61,14 +61,6 @@ def program_pids(coordinator, name):
     """Marked processes running the program `name` (by argv[0])."""
     return [p for p in coordinator.pids()
             if os.path.basename(coordinator_cmdline(p).split(" ")[0]) == name]
-
-
-def parent_pid(pid):
-    try:
-        with open("/proc/%d/stat" % pid) as f:
-            return int(f.read().rsplit(")", 1)[1].split()[1])
-    except OSError:
-        return 0
 
 
 def slave_pids(coordinator):
@@ -230,13 +222,7 @@ def test_still_image_and_render_area(coordinator, coordinator_references, tmp_pa
 
 def test_joins_running_virtual_machine(coordinator, coordinator_references, tmp_path):
     env = coordinator.env({"PVM_ALLOW_ROOT": "1"})
-    started = subprocess.run(["pvm"], input="quit\n", env=env, capture_output=True, text=True,
-                             timeout=30)
-    assert "pvmd still running" in started.stdout + started.stderr, started
-    # The pvmd may briefly fork a helper (pvmd'); the daemon is the one whose parent is not.
-    pvmds = program_pids(coordinator, "pvmd")
-    pvmds = [p for p in pvmds if parent_pid(p) not in pvmds]
-    assert len(pvmds) == 1, [coordinator_cmdline(p) for p in coordinator.pids()]
+    pvmd = coordinator.start_running_vm()
     try:
         out = tmp_path / "out"
         stats = tmp_path / "stats.json"
@@ -250,7 +236,7 @@ def test_joins_running_virtual_machine(coordinator, coordinator_references, tmp_
         while slave_pids(coordinator) and time.time() < deadline:
             time.sleep(0.1)
         assert slave_pids(coordinator) == [], r.stderr
-        assert pvmds[0] in coordinator.pids(), r.stderr
+        assert pvmd in coordinator.pids(), r.stderr
     finally:
         subprocess.run(["pvm"], input="halt\n", env=env, capture_output=True, text=True,
                        timeout=30)
@@ -736,10 +722,7 @@ def test_host_that_cannot_be_added_is_an_error(coordinator, tmp_path, private):
 
 def test_stale_pvmd_file_is_removed(coordinator, coordinator_references, tmp_path):
     # A pvmd killed by SIGKILL leaves its pvmd.<uid> file behind in PVM_TMP.
-    env = coordinator.env({"PVM_ALLOW_ROOT": "1"})
-    started = subprocess.run(["pvm"], input="quit\n", env=env, capture_output=True, text=True,
-                             timeout=30)
-    assert "pvmd still running" in started.stdout + started.stderr, started
+    coordinator.start_running_vm()
     stale = coordinator.pvm_tmp / ("pvmd.%d" % os.getuid())
     assert stale.exists()
     for pid in program_pids(coordinator, "pvmd"):

@@ -10,14 +10,12 @@ time. (How fast, measured: scripts/liveness-goals.)
 import os
 import shutil
 import signal
-import subprocess
 import time
 
 import pytest
 
 from conftest import COORDINATOR_SCENES, coordinator_cmdline, frame_files, load_rgb
-from test_coordinator import (SCENE, SLOW, assert_same_frames, parent_pid, program_pids,
-                             slave_pids, wait_for_frames)
+from test_coordinator import SCENE, SLOW, assert_same_frames, slave_pids, wait_for_frames
 
 pytestmark = pytest.mark.usefixtures("coordinator_build")
 
@@ -126,19 +124,6 @@ def test_scene_error_at_one_frame(coordinator, coordinator_references, tmp_path)
 
 # --- a pvmd that does not answer -------------------------------------------------------------
 
-def start_shared_pvmd(coordinator):
-    """A running virtual machine in the test's PVM_TMP, as a user starts one; returns the
-    pvmd's pid."""
-    env = coordinator.env({"PVM_ALLOW_ROOT": "1"})
-    started = subprocess.run(["pvm"], input="quit\n", env=env, capture_output=True, text=True,
-                             timeout=30)
-    assert "pvmd still running" in started.stdout + started.stderr, started
-    pvmds = program_pids(coordinator, "pvmd")
-    pvmds = [p for p in pvmds if parent_pid(p) not in pvmds]
-    assert len(pvmds) == 1
-    return pvmds[0]
-
-
 class Freezer:
     """A cgroup-v1 freezer group: its processes hang (state D) as on a dead file server."""
 
@@ -171,7 +156,7 @@ class Freezer:
 
 
 def test_stopped_pvmd_is_named_with_what_to_do(coordinator, tmp_path):
-    pvmd = start_shared_pvmd(coordinator)
+    pvmd = coordinator.start_running_vm()
     os.kill(pvmd, signal.SIGSTOP)
     try:
         r = coordinator.run(["--no-fc", SCENE] + ["+FT", "+W64", "+H48", "+KFI1", "+KFF2"] +
@@ -189,7 +174,7 @@ def test_stopped_pvmd_is_named_with_what_to_do(coordinator, tmp_path):
 @pytest.mark.skipif(not os.path.isdir("/sys/fs/cgroup/freezer"), reason="needs a cgroup freezer")
 @pytest.mark.parametrize("stop", [None, signal.SIGTERM], ids=["bound", "sigterm"])
 def test_hung_pvmd_never_hangs_the_master(coordinator, tmp_path, stop):
-    pvmd = start_shared_pvmd(coordinator)
+    pvmd = coordinator.start_running_vm()
     with Freezer("fc-test-" + coordinator.mark):
         Freezer("fc-test-" + coordinator.mark).freeze(pvmd)
         p = coordinator.start(["--no-fc", SCENE, "+FT", "+W64", "+H48", "+KFI1", "+KFF2", "-o",

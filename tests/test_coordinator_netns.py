@@ -141,6 +141,16 @@ def finish(coordinator, p, timeout=120):
         raise AssertionError("fc-master hung:\n%s\n--- trace:\n%s" % (err, coordinator.trace(150)))
 
 
+def wait_for_renderer(host, p):
+    """Wait until a renderer runs on host (fc-master p still running), and half a second more:
+    the host is then in the middle of its work."""
+    deadline = time.time() + 60
+    while not any(program(x) in ("povray-fc", "povray") for x in netns_pids(host)):
+        assert time.time() < deadline and p.poll() is None, "no renderer on " + host
+        time.sleep(0.05)
+    time.sleep(0.5)
+
+
 def assert_same(outdir, reference):
     assert frame_files(outdir) == sorted(reference)
     for name, want in reference.items():
@@ -178,12 +188,7 @@ def test_crashed_host_work_is_requeued(coordinator, coordinator_references, vm, 
     crashed = vm.hosts[1]
     p = coordinator.start(["--no-fc", "--timeout", "5", "--division", "sequence", SCENE] +
                           SLOW + ["-o", str(out)], env=vm.env)
-    deadline = time.time() + 60
-    while not any(program(x) == "povray-fc" or program(x) == "povray"
-                  for x in netns_pids(crashed)):
-        assert time.time() < deadline and p.poll() is None, "no renderer on " + crashed
-        time.sleep(0.05)
-    time.sleep(0.5)
+    wait_for_renderer(crashed, p)
     # The host crashes: its pvmd, slaves and renderers vanish at once.
     for pid in netns_pids(crashed):
         if program(pid) != "sshd":
@@ -273,11 +278,7 @@ def test_lost_host_work_is_copied_without_waiting(coordinator, coordinator_refer
     lost = vm.hosts[1]
     p = coordinator.start(["--no-fc", "--timeout", "600", "--division", "frame", SCENE] +
                           SLOW + ["-o", str(out)], env=vm.env)
-    deadline = time.time() + 60
-    while not any(program(x) in ("povray-fc", "povray") for x in netns_pids(lost)):
-        assert time.time() < deadline and p.poll() is None, "no renderer on " + lost
-        time.sleep(0.05)
-    time.sleep(0.5)
+    wait_for_renderer(lost, p)
     victims = [pid for pid in netns_pids(lost)
                if program(pid) != "sshd" and (fault == "stopped-host" or program(pid) == "pvmd")]
     for pid in victims:

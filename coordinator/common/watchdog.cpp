@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "clock.h"
+#include "signals.h"
 #include "text.h"
 
 namespace fc {
@@ -84,13 +85,7 @@ void start(const char *prog)
     if (g_started.exchange(true))
         return;
     g_prog = prog;
-    struct sigaction sa;
-    memset(&sa, 0, sizeof sa);
-    sa.sa_handler = on_stop_signal;
-    sigaction(SIGINT, &sa, nullptr);
-    sigaction(SIGTERM, &sa, nullptr);
-    sigaction(SIGHUP, &sa, nullptr);
-    signal(SIGPIPE, SIG_IGN);
+    install_signal_handlers(on_stop_signal);
     std::thread(watch).detach();
 }
 
