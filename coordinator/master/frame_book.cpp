@@ -118,7 +118,7 @@ bool FrameBook::put(int index, FrameResult &r, const std::vector<char> &keep,
     bool fits = encoding == format.encoding || (floats && format.pixels == PixelType::U8);
     if (!fits) {
         err = "the renderer sent " + encoding + " pixels for " + format.name + " output (" +
-              format.encoding + " expected): it lacks patch 0030 (frame channel output formats)";
+              format.encoding + " expected): its frame channel predates the output formats";
         return false;
     }
     size_t per_pixel = bytes_per_pixel(encoding);
