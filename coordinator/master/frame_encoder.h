@@ -4,10 +4,10 @@
 // master host's CPU to load, so it loads in the background and only when needed).
 //
 // A frame that came whole with POV-Ray's own file of it (Targa or PNG: the record's file=F)
-// needs no encoding at all: sequence division then never loads OpenImageIO. The choice also says when
-// OpenImageIO must load: while POV-Ray is probed when every assembled frame needs it (frame or
-// hybrid division without the helper, PNG, OpenEXR), else when the first result without a
-// file of its own arrives.
+// needs no encoding at all: sequence division then never loads OpenImageIO. The choice also
+// says when OpenImageIO must load: while POV-Ray is probed when every assembled frame needs it
+// (frame or hybrid division without the helper, PNG, OpenEXR), else when the first result
+// without a file of its own arrives.
 #pragma once
 
 #include <cstdint>
