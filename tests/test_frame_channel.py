@@ -24,9 +24,10 @@ def povray(args, tmp_path):
                           stdin=subprocess.DEVNULL)
 
 
-def records(path, with_files=False):
+def records(path, with_files=False, with_reads=False):
     """[(fields, rects, payload)] of a frame channel file; with_files, (fields, rects,
-    payload, file): file is the image file a whole-image record carries, or None."""
+    payload, file): file is the image file a whole-image record carries, or None; with_reads,
+    (fields, rects, payload, reads): reads is the text of the files the frame's parse read."""
     data = path.read_bytes()
     out, pos = [], 0
     while pos < len(data):
@@ -43,10 +44,16 @@ def records(path, with_files=False):
                 fields[key] = value
             i += 1
         size, file_size = int(fields["bytes"]), int(fields.get("file", 0))
+        reads_size = int(fields.get("reads", 0))
         payload = data[nl + 1:nl + 1 + size]
         file = data[nl + 1 + size:nl + 1 + size + file_size] if "file" in fields else None
-        out.append((fields, rects, payload, file) if with_files else (fields, rects, payload))
-        pos = nl + 1 + size + file_size
+        at = nl + 1 + size + file_size
+        reads = data[at:at + reads_size].decode()
+        if with_reads:
+            out.append((fields, rects, payload, reads))
+        else:
+            out.append((fields, rects, payload, file) if with_files else (fields, rects, payload))
+        pos = at + reads_size
     return out
 
 

@@ -66,17 +66,13 @@ struct JobMsg {
     int threads = 1;                    // POV-Ray work threads (+WT)
 };
 
-// The renderer's record of a frame (frame_record.h: its rectangles, pixels, file and
-// statistics), with the job it answers.
+// The renderer's record of a frame (frame_record.h: its rectangles, pixels, file, statistics
+// and the files its parse read, `reads`: relative paths there are the renderer's directory's,
+// the master's), with the job it answers.
 struct FrameResult : FrameRecord {
     int job = 0;
     std::vector<int> tiles;             // the job's tiles, one per rectangle
     int fresh = 0;                      // the renderer's first frame (fc traced everything)
-    // The files the frame's parse read or looked for, as the renderer reports them (the frame
-    // record's reads section, frame_record.h): lines "F<TAB>path" (opened and read) and
-    // "A<TAB>path" (looked for, absent), paths as POV-Ray formed them (relative ones to the
-    // renderer's directory, the master's). Empty: the renderer reports none.
-    std::string reads;
 };
 
 struct Progress {

@@ -4,9 +4,9 @@
 // resume keeps a frame only when every one of them is as it was (output_setup.h), so an edit
 // re-renders exactly the frames that read what changed.
 //
-// The renderer reports the files with each frame (protocol.h: FrameResult::reads, from the
-// frame record; every lookup of POV-Ray's parser goes through Locate_File). Until it does, a
-// frame's inputs are its scene file alone.
+// The renderer reports the files with each frame (the frame record's reads section,
+// frame-channel/frame_record.h; every lookup of POV-Ray's parser goes through Locate_File).
+// From a renderer that reports none, a frame's inputs are its scene file alone.
 #pragma once
 
 #include <sys/types.h>
