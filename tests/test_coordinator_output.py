@@ -403,6 +403,100 @@ def test_changed_include_renders_exactly_the_frames_that_read_it(coordinator, tm
     assert [f["frame"] for f in s["frames"] if not f["resumed"]] == [5, 6, 7, 8]
 
 
+def fresh_frames(scene, options, cwd, out):
+    """One POV-Ray process's frames of scene, rendered in cwd (where its relative files are):
+    {file name: pixels}."""
+    out.mkdir()
+    argv = [coordinator_renderer(), str(scene), "-D", "+FT", "-UA",
+            "+O%s/%s" % (out, scene.stem)] + list(options)
+    r = subprocess.run(argv, cwd=cwd, capture_output=True, text=True, timeout=300)
+    assert r.returncode == 0, "reference render failed:\n" + r.stderr[-3000:]
+    return {f: load_rgb(out / f) for f in sorted(os.listdir(out))}
+
+
+def rendered_again_after_edit(coordinator, tmp_path, late_sdl, edit, fc=False):
+    """Render moving.pov with late_sdl added for frames 5-8 (scene.pov in tmp_path, which is
+    the master's directory), run the same command again (nothing may render), edit(), and run
+    it once more. Returns the last run's stderr and statistics, after checking that every
+    frame equals a fresh render of the edited scene and that the edit shows in frames 5-8
+    only."""
+    scene = tmp_path / "scene.pov"
+    with open(os.path.join(COORDINATOR_SCENES, "moving.pov")) as f:
+        scene.write_text(f.read() + "#if (frame_number >= 5)\n" + late_sdl + "\n#end\n")
+    out = tmp_path / "out"
+    stats = tmp_path / "stats.json"
+    args = ([] if fc else ["--no-fc"]) + ["--stats", str(stats), str(scene)] + SMALL + \
+        ["-o", str(out)]
+    r = coordinator.run(args, cwd=tmp_path)
+    assert r.returncode == 0, r.stderr
+    # Invariant: unchanged inputs render nothing again.
+    r = coordinator.run(args, cwd=tmp_path)
+    assert r.returncode == 0 and "nothing to render" in r.stderr, r.stderr
+    before = {f: load_rgb(out / f) for f in frame_files(out)}
+    edit()
+    r = coordinator.run(args, cwd=tmp_path)
+    assert r.returncode == 0, r.stderr
+    # Invariant: after the edit every frame is the edited scene's, kept or rendered again.
+    after = fresh_frames(scene, SMALL, tmp_path, tmp_path / "fresh")
+    assert_frames_exact(out, after)
+    assert [f for f in sorted(after) if not (after[f] == before[f]).all()] == \
+        ["scene%d.tga" % n for n in (5, 6, 7, 8)]
+    return r.stderr, coordinator_stats(stats)
+
+
+def assert_rendered_again_exactly(stderr, stats, frames, path):
+    assert "rendering %d frame(s) again: its inputs changed: %s" % (len(frames), path) \
+        in stderr, stderr
+    assert stats["frames_rendered"] == len(frames), stats
+    assert [f["frame"] for f in stats["frames"] if not f["resumed"]] == frames
+
+
+def write_png(path, pixels):
+    import OpenImageIO as oiio
+    png = oiio.ImageOutput.create("png")
+    height, width = pixels.shape[:2]
+    assert png.open(str(path), oiio.ImageSpec(width, height, 3, "uint8"))
+    assert png.write_image(pixels) and png.close()
+
+
+def test_edited_image_map_renders_exactly_the_frames_that_use_it(coordinator, tmp_path):
+    # Frames 5-8 map tex.png onto a box (with frame coherence, fc-master's default): a new
+    # picture in it renders 5-8 again, and 1-4, which never read it, stay.
+    tex = tmp_path / "tex.png"
+    ramp = np.zeros((16, 16, 3), np.uint8)
+    ramp[:, :, 0] = np.arange(16, dtype=np.uint8)[None, :] * 16
+    write_png(tex, ramp)
+    late = ('box { <0, 0, 0>, <1, 1, 0.2> scale 1.4 translate <0.6, 0.2, -1> '
+            'pigment { image_map { png "tex.png" } } }')
+    stderr, stats = rendered_again_after_edit(
+        coordinator, tmp_path, late, lambda: write_png(tex, 255 - ramp), fc=True)
+    assert_rendered_again_exactly(stderr, stats, [5, 6, 7, 8], tex)
+
+
+def test_edited_font_renders_exactly_the_frames_that_use_it(coordinator, tmp_path):
+    # Frames 5-8 write text in font.ttf: another typeface under that name renders 5-8 again.
+    font = tmp_path / "font.ttf"
+    font.write_bytes(open("/usr/share/povray-3.7/include/timrom.ttf", "rb").read())
+    late = ('text { ttf "font.ttf" "fc" 0.2, 0 scale 0.9 translate <0.4, 0.3, -1.5> '
+            'pigment { color rgb <1, 1, 0.2> } }')
+    stderr, stats = rendered_again_after_edit(
+        coordinator, tmp_path, late,
+        lambda: font.write_bytes(open("/usr/share/povray-3.7/include/cyrvetic.ttf",
+                                      "rb").read()))
+    assert_rendered_again_exactly(stderr, stats, [5, 6, 7, 8], font)
+
+
+def test_file_created_where_file_exists_looked_renders_those_frames(coordinator, tmp_path):
+    # Frames 5-8 include extra.inc when it exists; it does not at first. Created, it makes
+    # exactly those frames render again (1-4 never looked for it).
+    extra = tmp_path / "extra.inc"
+    late = '#if (file_exists("extra.inc")) #include "extra.inc" #end'
+    stderr, stats = rendered_again_after_edit(
+        coordinator, tmp_path, late,
+        lambda: extra.write_text("sphere { <1, 2, 0>, 0.3 pigment { color rgb <0, 1, 1> } }\n"))
+    assert_rendered_again_exactly(stderr, stats, [5, 6, 7, 8], extra)
+
+
 def file_kind(path):
     """What OpenImageIO says a file is: format, channels, bits per sample, compression."""
     import OpenImageIO as oiio
