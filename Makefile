@@ -197,9 +197,12 @@ fast-test: unit-test patch-check
 patch-check:
 	$(PYTHON) $(TOP)/scripts/check-patches
 
+# Every GoogleTest unit, by ctest: our libraries' (the engine, the speed-ups, the frame record
+# and control lines) in $(LIB_BUILD), then the coordinator's in its own CMake build.
 unit-test: $(LIB_BUILD)/CMakeCache.txt | deps
 	cmake --build $(LIB_BUILD) -j$(JOBS)
 	cd $(LIB_BUILD) && ctest --output-on-failure
+	$(MAKE) --no-print-directory coordinator-unit-test
 
 integration-test: all
 	cd $(TOP) && $(PYTHON) -m pytest -q -p no:cacheprovider tests

@@ -7,7 +7,7 @@
 FRAME_CHANNEL_BUILD := $(BUILD)/frame-channel
 FRAME_CHANNEL_LIB := $(FRAME_CHANNEL_BUILD)/libframechannel.a
 FRAME_CHANNEL_OBJS := $(addprefix $(FRAME_CHANNEL_BUILD)/,frame_channel.o frame_control.o \
-  frame_record.o control_line.o)
+  frame_record.o control_line.o parse_reads.o)
 # POV-Ray's headers change only with the series (the patched stamp); ours with their files.
 FRAME_CHANNEL_HEADERS := $(wildcard $(TOP)/frame-channel/*.h $(TOP)/speedups/*.h)
 

@@ -23,6 +23,7 @@
 #include "frame-channel/frame_channel.h"
 #include "frame-channel/frame_record.h"
 #include "frame-channel/option_ids.h"
+#include "frame-channel/parse_reads.h"
 #include "speedups/encode_memo.h"
 
 // this must be the last file included
@@ -145,6 +146,8 @@ void FrameChannel::Open(POVMS_Object& opts)
     throw POV_EXCEPTION_STRING(msg.c_str());
   }
   m_Path = path;
+  // Each record says which files its frame's parse read (fc-master's resume checks them)
+  fc::ParseReads::process().enable(true);
   // The frames go to the channel, so there is nothing to continue from: no render state
   // (.pov-state) file, which would be the renderer's only write to disk.
   opts.SetBool(kPOVAttrib_BackupTrace, false);
@@ -155,10 +158,12 @@ void FrameChannel::Close()
   if (m_Fd >= 0)
     close(m_Fd);
   m_Fd = -1;
+  fc::ParseReads::process().enable(false);
 }
 
 void FrameChannel::ParseStarted()
 {
+  fc::ParseReads::process().restart();
   m_ParseStart = SteadySeconds();
   m_RenderStart = m_ParseStart;
   m_Rays = -1;
@@ -378,12 +383,15 @@ void FrameChannel::WriteFrame(POVMS_Object& opts, pov_frontend::ImageProcessing&
   record.file_gamma = gamma->ApproximateDecodingGamma();
   record.data.swap(pixels);
   record.file.swap(file);
+  record.reads = fc::ParseReads::process().take();
   const std::string header(fc::record_header(record));
   WriteAll(header.data(), header.size());
   if (!record.data.empty())
     WriteAll(&record.data[0], record.data.size());
   if (!record.file.empty())
     WriteAll(&record.file[0], record.file.size());
+  if (!record.reads.empty())
+    WriteAll(record.reads.data(), record.reads.size());
 }
 
 }

@@ -11,7 +11,8 @@
  * can assemble frames that equal POV-Ray's own output without decoding an
  * image file; a record of the whole image in Targa or PNG also carries the
  * file that writer makes of the frame. The rectangles are those Frame_Control
- * asked for (frame_control.h), else the whole image.
+ * asked for (frame_control.h), else the whole image. Every record also says
+ * which files the frame's parse read or looked for (parse_reads.h).
  *
  * With a channel set, no image file is written, nor the render state file
  * (NAME.pov-state): there is nothing to continue from.
@@ -47,7 +48,8 @@ namespace vfe
       bool Active() const { return m_Fd >= 0; }
       void Close();
 
-      // Timing of the current frame: parse starts, render starts.
+      // Timing of the current frame: parse starts (and the files it reads are
+      // collected afresh), render starts.
       void ParseStarted();
       void RenderStarted();
 

@@ -13,6 +13,7 @@ namespace {
 
 const size_t kMaxHeader = 1 << 20;      // a header with thousands of rectangles is still small
 const size_t kMaxPayload = size_t(1) << 34;
+const size_t kMaxReads = size_t(1) << 30;  // lines of paths: a million files are 100 MB
 
 bool parse_number(const std::string &s, double &v)
 {
@@ -69,14 +70,16 @@ std::string record_header(const FrameRecord &rec)
     if (!rec.file.empty())
         header += field(" file=%lu", (unsigned long)rec.file.size());
     header += field(" file_gamma=%.9g", rec.file_gamma);
+    if (!rec.reads.empty())
+        header += field(" reads=%lu", (unsigned long)rec.reads.size());
     header += field(" bytes=%lu\n", (unsigned long)rec.data.size());
     return header;
 }
 
-bool parse_record_header(const std::string &line, FrameRecord &rec, size_t &payload_bytes,
-                         size_t &file_bytes, std::string &err)
+bool parse_record_header(const std::string &line, FrameRecord &rec, RecordSizes &sizes,
+                         std::string &err)
 {
-    file_bytes = 0;
+    sizes = RecordSizes();
     std::istringstream words(line);
     std::string magic, version, w;
     if (!(words >> magic >> version) || magic != "FCFRAME" || version != "1") {
@@ -117,14 +120,20 @@ bool parse_record_header(const std::string &line, FrameRecord &rec, size_t &payl
                 err = "frame record size out of range: " + value;
                 return false;
             }
-            payload_bytes = size_t(v);
+            sizes.pixels = size_t(v);
             have_bytes = true;
         } else if (key == "file") {
             if (v < 0 || v > double(kMaxPayload)) {
                 err = "frame record file size out of range: " + value;
                 return false;
             }
-            file_bytes = size_t(v);
+            sizes.file = size_t(v);
+        } else if (key == "reads") {
+            if (v < 0 || v > double(kMaxReads)) {
+                err = "frame record reads size out of range: " + value;
+                return false;
+            }
+            sizes.reads = size_t(v);
         } else if (key == "rects") {
             int n = int(v);
             for (int i = 0; i < n; i++) {
@@ -149,9 +158,9 @@ bool parse_record_header(const std::string &line, FrameRecord &rec, size_t &payl
     for (const Rect &r : rec.rects)
         pixels += size_t(r.area());
     size_t expected = pixels * per_pixel + (rec.encoding == "rgbf" ? sizeof(Diffusion) : 0);
-    if (payload_bytes != expected) {
+    if (sizes.pixels != expected) {
         err = "frame record of frame " + std::to_string(rec.frame) + " has " +
-              std::to_string(payload_bytes) + " bytes for " + std::to_string(pixels) + " pixels";
+              std::to_string(sizes.pixels) + " bytes for " + std::to_string(pixels) + " pixels";
         return false;
     }
     return true;
@@ -203,17 +212,19 @@ int FrameRecordReader::next(FrameRecord &rec, std::string &err)
         }
         return 0;
     }
-    size_t payload = 0, file = 0;
-    if (!parse_record_header(buf_.substr(pos_, nl - pos_), rec, payload, file, err))
+    RecordSizes sizes;
+    if (!parse_record_header(buf_.substr(pos_, nl - pos_), rec, sizes, err))
         return -1;
-    if (buf_.size() - (nl + 1) < payload + file)
+    size_t body = sizes.pixels + sizes.file + sizes.reads;
+    if (buf_.size() - (nl + 1) < body)
         return 0;
     // Through uint8_t pointers: assigned from the string's char iterators, the bytes were
     // converted one by one instead of copied as a block (a tenth of fc-slave's CPU).
     const uint8_t *start = reinterpret_cast<const uint8_t *>(buf_.data()) + nl + 1;
-    rec.data.assign(start, start + payload);
-    rec.file.assign(start + payload, start + payload + file);
-    pos_ = nl + 1 + payload + file;
+    rec.data.assign(start, start + sizes.pixels);
+    rec.file.assign(start + sizes.pixels, start + sizes.pixels + sizes.file);
+    rec.reads.assign(buf_, nl + 1 + sizes.pixels + sizes.file, sizes.reads);
+    pos_ = nl + 1 + body;
     return 1;
 }
 

@@ -4,9 +4,10 @@
 //
 // A record is one ASCII header line, then binary data:
 //   FCFRAME 1 frame=N rays=R parse=S trace=S encoding=E rects=K x0,y0,x1,y1 ... [file=F]
-//     file_gamma=G bytes=B\n                                       (one line)
+//     file_gamma=G [reads=R] bytes=B\n                              (one line)
 //   <B bytes: the pixels, per rectangle its rows top to bottom>
 //   <F bytes: the image file of the whole frame, when the header says file=F>
+//   <R bytes: the files the frame's parse read, when the header says reads=R>
 // Rectangles are 0-based and half-open, [x0,x1) x [y0,y1) in full-image pixels: those the
 // frame control asked for, else the whole image. rays is the frame's "Rays:" statistic
 // (-1: none), parse and trace are wall seconds. file_gamma is the gamma the output format's
@@ -22,6 +23,20 @@
 //          dithers the assembled frame, with POV-Ray's own dither handler (fc-image-writer)
 // A record of the whole image in Targa or PNG also carries the file the format's writer
 // makes of the frame (file=F), so a frame rendered whole is stored as it is.
+//
+// The reads section (reads=R; parse_reads.h collects it) says which files the frame's picture
+// depends on, so that fc-master's resume keeps a frame only while they are as they were. It
+// is lines of text, each "F<TAB>path<LF>" or "A<TAB>path<LF>":
+//   F  a file the frame's parse opened and read: the scene, an include, a macro's file, an
+//      image map, a density file, a font, a file #fopen'd for #read (POV-Ray's Locate_File);
+//   A  a path the parse's search looked at and found no file at: every candidate tried by a
+//      lookup that found nothing (file_exists, a missing include) and those tried before the
+//      one a lookup found (a file created there later would be found instead); each name with
+//      each extension of its type, in the current directory and then in each library path
+//      (FileMessageHandler::FindFilePath).
+// Paths are as POV-Ray formed them: relative ones are relative to the renderer's directory.
+// Each line once, in the order first met; only this frame's parse (from its start to its
+// record). No section (or R = 0): the renderer reported nothing.
 #pragma once
 
 #include <cstddef>
@@ -52,6 +67,14 @@ struct FrameRecord {
     std::vector<uint8_t> data;      // the pixels, as sent (rgbf: with its Diffusion)
     std::vector<uint8_t> file;      // the frame's image file (whole-image records), or empty
     double file_gamma = 0;          // the gamma its file records (0: not said)
+    std::string reads;              // the reads section: "F<TAB>path" / "A<TAB>path" lines
+};
+
+// The sizes of what follows a record's header line, in that order.
+struct RecordSizes {
+    size_t pixels = 0;              // bytes=B
+    size_t file = 0;                // file=F
+    size_t reads = 0;               // reads=R
 };
 
 // What an rgbf record's receiver dithers with, after the pixels (native byte order):
@@ -72,14 +95,13 @@ bool is_diffusion_method(int method);
 // Bytes a pixel takes in an encoding (rgbf: without its Diffusion); 0 for an unknown one.
 size_t bytes_per_pixel(const std::string &encoding);
 
-// The header line of record (with its newline), for its data and file as they are.
+// The header line of record (with its newline), for its data, file and reads as they are.
 std::string record_header(const FrameRecord &record);
 
-// Parse one header line (without its newline) into record (all but data and file);
-// payload_bytes is the size of the pixels that follow, file_bytes that of the file after
-// them. Returns false with err on a malformed header.
-bool parse_record_header(const std::string &line, FrameRecord &record, size_t &payload_bytes,
-                         size_t &file_bytes, std::string &err);
+// Parse one header line (without its newline) into record (all but data, file and reads) and
+// the sizes of what follows it. Returns false with err on a malformed header.
+bool parse_record_header(const std::string &line, FrameRecord &record, RecordSizes &sizes,
+                         std::string &err);
 
 // Append d to an rgbf record's pixels; read it back from the data of a record of `pixels`
 // pixels (false with err when it is missing or names no diffusion method).

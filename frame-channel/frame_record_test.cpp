@@ -28,6 +28,7 @@ std::string Stream(const FrameRecord &rec)
     std::string s = record_header(rec);
     s.append(rec.data.begin(), rec.data.end());
     s.append(rec.file.begin(), rec.file.end());
+    s += rec.reads;
     return s;
 }
 
@@ -43,6 +44,11 @@ TEST(FrameRecord, HeaderIsTheDocumentedLine)
     EXPECT_EQ(record_header(whole),
               "FCFRAME 1 frame=7 rays=-1 parse=0.250000 trace=1.500000 encoding=rgb8 "
               "rects=1 0,0,2,2 file=3 file_gamma=2.20000005 bytes=12\n");
+    // The reads section's size comes before bytes=B; without reads the field is left out.
+    whole.reads = "F\tscene.pov\nA\tlate.inc\n";
+    EXPECT_EQ(record_header(whole),
+              "FCFRAME 1 frame=7 rays=-1 parse=0.250000 trace=1.500000 encoding=rgb8 "
+              "rects=1 0,0,2,2 file=3 file_gamma=2.20000005 reads=23 bytes=12\n");
 }
 
 TEST(FrameRecord, WrittenRecordsReadBackWhateverTheBytesArriveIn)
@@ -51,6 +57,7 @@ TEST(FrameRecord, WrittenRecordsReadBackWhateverTheBytesArriveIn)
     b.frame = 8;
     b.rects = {Rect{0, 0, 2, 2}};
     b.file = {'P', 'N', 'G', 0};
+    b.reads = "F\t/usr/share/povray-3.7/include/colors.inc\nA\tcolors.inc\n";
     std::string stream = Stream(a) + Stream(b);
     for (size_t chunk : {size_t(1), size_t(5), stream.size()}) {
         FrameRecordReader reader;
@@ -76,6 +83,7 @@ TEST(FrameRecord, WrittenRecordsReadBackWhateverTheBytesArriveIn)
             EXPECT_EQ(got[k].rects, want.rects);
             EXPECT_EQ(got[k].data, want.data);
             EXPECT_EQ(got[k].file, want.file);
+            EXPECT_EQ(got[k].reads, want.reads);
             EXPECT_FLOAT_EQ(float(got[k].file_gamma), 2.2f);
         }
     }
@@ -95,12 +103,14 @@ TEST(FrameRecord, MalformedHeadersAreRefusedWithTheReason)
         {"FCFRAME 1 frame=1 rects=1 0,0,1,1 encoding=rgb8", "known encoding"},
         {"FCFRAME 1 frame=1 rects=1 0,0,2,1 encoding=rgb8 bytes=3", "has 3 bytes for 2 pixels"},
         {"FCFRAME 1 frame=1 rects=1 0,0,1,1 encoding=rgbf bytes=12", "has 12 bytes for 1 pixels"},
+        {"FCFRAME 1 frame=1 rects=1 0,0,1,1 encoding=rgb8 reads=-1 bytes=3", "reads size"},
+        {"FCFRAME 1 frame=1 rects=1 0,0,1,1 encoding=rgb8 reads=x bytes=3", "reads is not"},
     };
     for (const Case &c : cases) {
         FrameRecord rec;
-        size_t payload = 0, file = 0;
+        RecordSizes sizes;
         std::string err;
-        EXPECT_FALSE(parse_record_header(c.line, rec, payload, file, err)) << c.line;
+        EXPECT_FALSE(parse_record_header(c.line, rec, sizes, err)) << c.line;
         EXPECT_NE(err.find(c.reason), std::string::npos) << c.line << ": " << err;
     }
 }
@@ -108,14 +118,35 @@ TEST(FrameRecord, MalformedHeadersAreRefusedWithTheReason)
 TEST(FrameRecord, UnknownFieldsAreSkipped)
 {
     FrameRecord rec;
-    size_t payload = 0, file = 0;
+    RecordSizes sizes;
     std::string err;
     ASSERT_TRUE(parse_record_header(
-        "FCFRAME 1 frame=3 later=9 rects=1 0,0,1,2 encoding=rgb16 bytes=12", rec, payload, file,
-        err)) << err;
+        "FCFRAME 1 frame=3 later=9 rects=1 0,0,1,2 encoding=rgb16 bytes=12", rec, sizes, err))
+        << err;
     EXPECT_EQ(rec.frame, 3);
-    EXPECT_EQ(payload, 12u);
-    EXPECT_EQ(file, 0u);
+    EXPECT_EQ(sizes.pixels, 12u);
+    EXPECT_EQ(sizes.file, 0u);
+    EXPECT_EQ(sizes.reads, 0u);
+}
+
+// The reads section follows the pixels and the file, and a record is complete only with it.
+TEST(FrameRecord, ReadsFollowThePixelsAndTheFile)
+{
+    FrameRecord rec = TwoTiles();
+    rec.rects = {Rect{0, 0, 2, 2}};
+    rec.file = {'T', 'G', 'A'};
+    rec.reads = "F\tscene.pov\nA\tdata.txt\nA\t/usr/share/povray-3.7/include/data.txt\n";
+    std::string stream = Stream(rec), err;
+    FrameRecordReader reader;
+    reader.feed(stream.data(), stream.size() - 1);
+    FrameRecord got;
+    ASSERT_EQ(reader.next(got, err), 0) << err;         // its last byte is missing
+    reader.feed(stream.data() + stream.size() - 1, 1);
+    ASSERT_EQ(reader.next(got, err), 1) << err;
+    EXPECT_EQ(got.data, rec.data);
+    EXPECT_EQ(got.file, rec.file);
+    EXPECT_EQ(got.reads, rec.reads);
+    EXPECT_EQ(reader.pending(), 0u);
 }
 
 TEST(FrameRecord, DiffusionFollowsThePixels)

@@ -1,7 +1,7 @@
 // fc_image_writer.cpp - fc-image-writer: POV-Ray's own image code for the frames fc-master
-// assembles from tiles, in a process of its own beside fc-master (coordinator/image_writer.h
-// is the other end). It links the patched POV-Ray's libraries (libpovray.a, libvfe.a), so it
-// is built once POV-Ray is.
+// assembles from tiles, in a process of its own beside fc-master
+// (coordinator/master/image_writer_client.h is the other end). It links the patched POV-Ray's
+// libraries (libpovray.a, libvfe.a), so it is built once POV-Ray is.
 //
 // Why a process: a frame division assembles every frame from tiles and must encode it.
 // OpenImageIO's 262 shared libraries cost the dynamic loader 0.35-0.4 s of CPU to bind

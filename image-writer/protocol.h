@@ -1,5 +1,5 @@
-// protocol.h - the messages between fc-master (coordinator/image_writer.cpp) and
-// fc-image-writer (fc_image_writer.cpp), on the helper's descriptors 3 (requests) and 4
+// protocol.h - the messages between fc-master (coordinator/master/image_writer_client.cpp)
+// and fc-image-writer (fc_image_writer.cpp), on the helper's descriptors 3 (requests) and 4
 // (replies), in native byte order (same machine). Plain C++: the helper is compiled with
 // POV-Ray's flags, fc-master with ours.
 #pragma once

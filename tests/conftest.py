@@ -76,6 +76,14 @@ def coordinator_marked_pids(mark):
     return pids
 
 
+def parent_pid(pid):
+    try:
+        with open("/proc/%d/stat" % pid) as f:
+            return int(f.read().rsplit(")", 1)[1].split()[1])
+    except OSError:
+        return 0
+
+
 def coordinator_cmdline(pid):
     try:
         with open("/proc/%d/cmdline" % pid, "rb") as f:
@@ -200,6 +208,20 @@ class CoordinatorRun:
                 % (timeout, " ".join(argv), err[-4000:], "\n".join(procs), self.trace(80)))
         return subprocess.CompletedProcess(argv, p.returncode, out, err)
 
+    def start_running_vm(self):
+        """A virtual machine running in this run's PVM_TMP, started with the console as a user
+        starts one; returns its pvmd's pid."""
+        env = self.env({"PVM_ALLOW_ROOT": "1"})
+        started = subprocess.run(["pvm"], input="quit\n", env=env, capture_output=True,
+                                 text=True, timeout=30)
+        assert "pvmd still running" in started.stdout + started.stderr, started
+        # The pvmd may briefly fork a helper (pvmd'); the daemon is the one whose parent is not.
+        pvmds = [p for p in self.pids() if os.path.basename(
+            coordinator_cmdline(p).split(" ")[0]) == "pvmd"]
+        pvmds = [p for p in pvmds if parent_pid(p) not in pvmds]
+        assert len(pvmds) == 1, [coordinator_cmdline(p) for p in self.pids()]
+        return pvmds[0]
+
     def trace(self, lines=60):
         """The last lines of the protocol trace (FC_DEBUG_LOG)."""
         try:
@@ -260,8 +282,7 @@ def coordinator(tmp_path):
 @pytest.fixture(scope="session")
 def coordinator_build():
     """Build fc-master and fc-slave (fast when up to date)."""
-    r = subprocess.run(["make", "-C", os.path.join(TOP, "coordinator"), "BIN=" + BIN],
-                       capture_output=True, text=True)
+    r = subprocess.run(["make", "-C", TOP, "coordinator"], capture_output=True, text=True)
     assert r.returncode == 0, "building the coordinator failed:\n" + r.stdout + r.stderr
     assert os.access(FC_MASTER, os.X_OK) and os.access(FC_SLAVE, os.X_OK)
     return BIN

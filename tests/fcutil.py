@@ -1,21 +1,22 @@
-"""Shared helpers for povray-fc's integration tests: run renders, read and compare pixels."""
-import os
+"""Shared helpers for povray-fc's integration tests: run renders, read and compare pixels.
+
+Where the programs are and how a frame's pixels are read is the scripts' shared module
+(scripts/fcscript.py), so that tests and scripts read images one way."""
 import subprocess
+import sys
 from pathlib import Path
 
 import numpy as np
-import OpenImageIO as oiio
 
-TOP = Path(__file__).resolve().parent.parent
-BIN = TOP / "build" / "bin"
-POVRAY_FC = BIN / "povray-fc"
-DEBIAN_POVRAY = Path("/usr/bin/povray")
+sys.path.insert(0, str(Path(__file__).resolve().parent.parent / "scripts"))
+from fcscript import BIN, DEBIAN_POVRAY, POVRAY_FC, TOP, read_pixels  # noqa: E402,F401
+
 SCENES = TOP / "scenes"
 # Options for scenes/coordinator-test/moving.pov that keep fc-master busy for a while: about
 # 11 s on one processor of the eighteenth session's machine (24 frames, deep anti-aliasing).
 # For tests that act while a render runs (a preview's first write 5 s in, a host added 1 s
 # in); shorter renders ended too close to those moments on a fast machine.
-LONG_COORDINATOR_RENDER = ["+W320", "+H240", "+KFI1", "+KFF24", "+A0.1", "+AM2", "+R4"]
+LONG_COORDINATOR_RENDER = ["+FT", "+W320", "+H240", "+KFI1", "+KFF24", "+A0.1", "+AM2", "+R4"]
 
 
 def render(binary, scene, out_file, *options, cwd=None, timeout=600, threads=None, env=None):
@@ -35,20 +36,6 @@ def files_below(top):
     """Every file below the directory top, as paths relative to it."""
     top = Path(top)
     return {p.relative_to(top).as_posix() for p in top.rglob("*") if p.is_file()}
-
-
-def read_pixels(path):
-    """Pixels of an image file as a uint8 array (height, width, channels), via OpenImageIO."""
-    inp = oiio.ImageInput.open(str(path))
-    if inp is None:
-        raise IOError(f"{path}: {oiio.geterror()}")
-    try:
-        pixels = inp.read_image(0, 0, 0, inp.spec().nchannels, oiio.UINT8)
-    finally:
-        inp.close()
-    if pixels is None:
-        raise IOError(f"{path}: {oiio.geterror()}")
-    return np.asarray(pixels)
 
 
 def pixel_difference(path_a, path_b):

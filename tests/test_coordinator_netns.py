@@ -21,8 +21,8 @@ pytestmark = pytest.mark.usefixtures("coordinator_build")
 
 SCRIPT = os.path.join(TOP, "scripts", "pvm-netns-hosts.sh")
 SCENE = "moving.pov"
-OPTS = ["+W160", "+H120", "+KFI1", "+KFF12"]
-SLOW = ["+W320", "+H240", "+KFI1", "+KFF24", "+A0.1", "+AM2", "+R3"]
+OPTS = ["+FT", "+W160", "+H120", "+KFI1", "+KFF12"]
+SLOW = ["+FT", "+W320", "+H240", "+KFI1", "+KFF24", "+A0.1", "+AM2", "+R3"]
 
 
 def netns_usable():
@@ -141,6 +141,16 @@ def finish(coordinator, p, timeout=120):
         raise AssertionError("fc-master hung:\n%s\n--- trace:\n%s" % (err, coordinator.trace(150)))
 
 
+def wait_for_renderer(host, p):
+    """Wait until a renderer runs on host (fc-master p still running), and half a second more:
+    the host is then in the middle of its work."""
+    deadline = time.time() + 60
+    while not any(program(x) in ("povray-fc", "povray") for x in netns_pids(host)):
+        assert time.time() < deadline and p.poll() is None, "no renderer on " + host
+        time.sleep(0.05)
+    time.sleep(0.5)
+
+
 def assert_same(outdir, reference):
     assert frame_files(outdir) == sorted(reference)
     for name, want in reference.items():
@@ -178,12 +188,7 @@ def test_crashed_host_work_is_requeued(coordinator, coordinator_references, vm, 
     crashed = vm.hosts[1]
     p = coordinator.start(["--no-fc", "--timeout", "5", "--division", "sequence", SCENE] +
                           SLOW + ["-o", str(out)], env=vm.env)
-    deadline = time.time() + 60
-    while not any(program(x) == "povray-fc" or program(x) == "povray"
-                  for x in netns_pids(crashed)):
-        assert time.time() < deadline and p.poll() is None, "no renderer on " + crashed
-        time.sleep(0.05)
-    time.sleep(0.5)
+    wait_for_renderer(crashed, p)
     # The host crashes: its pvmd, slaves and renderers vanish at once.
     for pid in netns_pids(crashed):
         if program(pid) != "sshd":
@@ -261,3 +266,36 @@ def test_private_machine_from_hostfile(coordinator, coordinator_references, netn
         time.sleep(0.1)
     assert [program(p) for h in hosts for p in netns_pids(h)] == ["sshd"] * len(hosts)
     assert coordinator.wait_no_processes() == []
+
+
+@pytest.mark.parametrize("fault", ["stopped-host", "killed-pvmd"])
+def test_lost_host_work_is_copied_without_waiting(coordinator, coordinator_references, vm,
+                                                  tmp_path, fault):
+    # With a --timeout far beyond the test's bound, only the progress rules can finish the
+    # run in time: the lost host's jobs pass their deadline and are copied to other hosts.
+    vm.add(vm.hosts, 4)
+    out = tmp_path / "out"
+    lost = vm.hosts[1]
+    p = coordinator.start(["--no-fc", "--timeout", "600", "--division", "frame", SCENE] +
+                          SLOW + ["-o", str(out)], env=vm.env)
+    wait_for_renderer(lost, p)
+    victims = [pid for pid in netns_pids(lost)
+               if program(pid) != "sshd" and (fault == "stopped-host" or program(pid) == "pvmd")]
+    for pid in victims:
+        try:
+            os.kill(pid, signal.SIGSTOP if fault == "stopped-host" else signal.SIGKILL)
+        except ProcessLookupError:
+            pass
+    try:
+        err = finish(coordinator, p, timeout=150)
+    finally:
+        for pid in victims:
+            try:
+                os.kill(pid, signal.SIGCONT)
+            except ProcessLookupError:
+                pass
+    assert p.returncode == 0, err + coordinator.trace()
+    assert "another slave renders it too" in err, err
+    # No slave of a healthy host was taken for lost.
+    assert "silent" not in err, err
+    assert_same(out, coordinator_references.frames(SCENE, SLOW))

@@ -2,9 +2,10 @@
 
 A full disk is an error that says so and leaves only complete frames under final names; the
 output directory is checked (writable, room for the frames) before anything renders; a resume
-re-renders every frame that is not complete and correct; two masters never write the same
-frames; a resume after the scene or its options changed is refused unless --force; frames are
-written in the format POV-Ray would write; a preview shows the render while it runs.
+re-renders every frame that is not complete and correct, or whose inputs (the scene, the files
+its parse read) changed; two masters never write the same frames; a resume after the options
+changed is refused unless --force; frames are written in the format POV-Ray would write; a
+preview shows the render while it runs.
 Small file systems are tmpfs mounts (root only).
 """
 import os
@@ -22,9 +23,9 @@ from fcutil import LONG_COORDINATOR_RENDER, TOP
 pytestmark = pytest.mark.usefixtures("coordinator_build")
 
 SCENE = "moving.pov"
-SMALL = ["+W160", "+H120", "+KFI1", "+KFF8"]
+SMALL = ["+FT", "+W160", "+H120", "+KFI1", "+KFF8"]
 # 24 Targa frames of 225 KB; about 0.2 s a frame per process.
-SLOW = ["+W320", "+H240", "+KFI1", "+KFF24", "+A0.1", "+AM2", "+R3"]
+SLOW = ["+FT", "+W320", "+H240", "+KFI1", "+KFF24", "+A0.1", "+AM2", "+R3"]
 
 root_only = pytest.mark.skipif(os.geteuid() != 0, reason="needs root to mount tmpfs")
 
@@ -284,13 +285,18 @@ def test_resume_trusts_the_record_of_an_earlier_version(coordinator, coordinator
     out = tmp_path / "out"
     assert coordinator.run(small_render_args(out)).returncode == 0
     # The record as an earlier fc-master wrote it: "name hash", FNV-1a of the stored pixels
-    # (8-bit RGB, rows top first), instead of "name w1 hash".
+    # (8-bit RGB, rows top first), instead of "name w2 hash inputs", and the scene's contents
+    # in the manifest instead of every frame's inputs.
     [journal] = (out / ".fc-master").glob("*.frames")
     lines = journal.read_text().splitlines()
-    assert lines and all(len(line.split(" ")) == 3 and line.split(" ")[1] == "w1"
+    assert lines and all(len(line.split(" ")) == 4 and line.split(" ")[1] == "w2"
                          for line in lines), lines
     journal.write_text("".join("%s %016x\n" % (name, fnv1a64(load_rgb(out / name).tobytes()))
                                for name in (line.split(" ")[0] for line in lines)))
+    [manifest] = (out / ".fc-master").glob("*.manifest")
+    with open(os.path.join(COORDINATOR_SCENES, SCENE), "rb") as f:
+        scene_hash = fnv1a64(f.read())
+    manifest.write_text(manifest.read_text() + "scene contents\t%016x\n" % scene_hash)
     assert_resume_renders_damaged_frames_again(coordinator, coordinator_references, tmp_path,
                                                out)
 
@@ -354,18 +360,141 @@ def test_changed_options_are_refused_unless_forced(coordinator, coordinator_refe
     assert r.returncode == 0 and "nothing to render" in r.stderr, r.stderr
 
 
-def test_changed_scene_is_refused(coordinator, tmp_path):
+def test_changed_scene_renders_its_frames_again(coordinator, coordinator_references, tmp_path):
     scene = tmp_path / "scene.pov"
     with open(os.path.join(COORDINATOR_SCENES, "moving.pov")) as f:
         scene.write_text(f.read())
     out = tmp_path / "out"
-    args = ["--no-fc", "--quiet", str(scene)] + SMALL + ["-o", str(out)]
+    args = ["--no-fc", str(scene)] + SMALL + ["-o", str(out)]
     assert coordinator.run(args).returncode == 0
+    # Unchanged inputs: nothing is rendered again.
+    r = coordinator.run(args)
+    assert r.returncode == 0 and "nothing to render" in r.stderr, r.stderr
+    # The scene every frame read changed: every frame is rendered again, no --force needed
+    # (an earlier version refused until --force).
     scene.write_text(scene.read_text().replace("color rgb <0.9, 0.3, 0.2>",
                                                "color rgb <0.2, 0.3, 0.9>"))
     r = coordinator.run(args)
-    assert r.returncode == 1
-    assert "scene contents" in r.stderr and "--force" in r.stderr, r.stderr
+    assert r.returncode == 0, r.stderr
+    assert "rendering 8 frame(s) again: its inputs changed: %s" % scene in r.stderr, r.stderr
+    assert_frames_exact(out, coordinator_references.frames(str(scene), SMALL))
+
+
+def test_changed_include_renders_exactly_the_frames_that_read_it(coordinator, tmp_path):
+    # Frames 5-8 include late.inc, frames 1-4 do not: an edit of late.inc renders 5-8 again.
+    scene = tmp_path / "scene.pov"
+    with open(os.path.join(COORDINATOR_SCENES, "moving.pov")) as f:
+        scene.write_text(f.read() + '#if (frame_number >= 5) #include "late.inc" #end\n')
+    late = tmp_path / "late.inc"
+    late.write_text("sphere { <1, 2, 0>, 0.3 pigment { color rgb <1, 1, 0> } }\n")
+    out = tmp_path / "out"
+    stats = tmp_path / "stats.json"
+    args = ["--no-fc", "--stats", str(stats), str(scene)] + SMALL + ["-o", str(out)]
+    assert coordinator.run(args, cwd=tmp_path).returncode == 0
+    [inputs] = (out / ".fc-master").glob("*.inputs")
+    # The renderers reported what each frame's parse read (the frame record's reads section).
+    assert str(late) in inputs.read_text(), inputs.read_text()
+    late.write_text("sphere { <1, 2, 0>, 0.3 pigment { color rgb <0, 1, 1> } }\n")
+    r = coordinator.run(args, cwd=tmp_path)
+    assert r.returncode == 0, r.stderr
+    assert "rendering 4 frame(s) again: its inputs changed: %s" % late in r.stderr, r.stderr
+    s = coordinator_stats(stats)
+    assert s["frames_resumed"] == 4 and s["frames_rendered"] == 4, s
+    assert [f["frame"] for f in s["frames"] if not f["resumed"]] == [5, 6, 7, 8]
+
+
+def fresh_frames(scene, options, cwd, out):
+    """One POV-Ray process's frames of scene, rendered in cwd (where its relative files are):
+    {file name: pixels}."""
+    out.mkdir()
+    argv = [coordinator_renderer(), str(scene), "-D", "+FT", "-UA",
+            "+O%s/%s" % (out, scene.stem)] + list(options)
+    r = subprocess.run(argv, cwd=cwd, capture_output=True, text=True, timeout=300)
+    assert r.returncode == 0, "reference render failed:\n" + r.stderr[-3000:]
+    return {f: load_rgb(out / f) for f in sorted(os.listdir(out))}
+
+
+def rendered_again_after_edit(coordinator, tmp_path, late_sdl, edit, fc=False):
+    """Render moving.pov with late_sdl added for frames 5-8 (scene.pov in tmp_path, which is
+    the master's directory), run the same command again (nothing may render), edit(), and run
+    it once more. Returns the last run's stderr and statistics, after checking that every
+    frame equals a fresh render of the edited scene and that the edit shows in frames 5-8
+    only."""
+    scene = tmp_path / "scene.pov"
+    with open(os.path.join(COORDINATOR_SCENES, "moving.pov")) as f:
+        scene.write_text(f.read() + "#if (frame_number >= 5)\n" + late_sdl + "\n#end\n")
+    out = tmp_path / "out"
+    stats = tmp_path / "stats.json"
+    args = ([] if fc else ["--no-fc"]) + ["--stats", str(stats), str(scene)] + SMALL + \
+        ["-o", str(out)]
+    r = coordinator.run(args, cwd=tmp_path)
+    assert r.returncode == 0, r.stderr
+    # Invariant: unchanged inputs render nothing again.
+    r = coordinator.run(args, cwd=tmp_path)
+    assert r.returncode == 0 and "nothing to render" in r.stderr, r.stderr
+    before = {f: load_rgb(out / f) for f in frame_files(out)}
+    edit()
+    r = coordinator.run(args, cwd=tmp_path)
+    assert r.returncode == 0, r.stderr
+    # Invariant: after the edit every frame is the edited scene's, kept or rendered again.
+    after = fresh_frames(scene, SMALL, tmp_path, tmp_path / "fresh")
+    assert_frames_exact(out, after)
+    assert [f for f in sorted(after) if not (after[f] == before[f]).all()] == \
+        ["scene%d.tga" % n for n in (5, 6, 7, 8)]
+    return r.stderr, coordinator_stats(stats)
+
+
+def assert_rendered_again_exactly(stderr, stats, frames, path):
+    assert "rendering %d frame(s) again: its inputs changed: %s" % (len(frames), path) \
+        in stderr, stderr
+    assert stats["frames_rendered"] == len(frames), stats
+    assert [f["frame"] for f in stats["frames"] if not f["resumed"]] == frames
+
+
+def write_png(path, pixels):
+    import OpenImageIO as oiio
+    png = oiio.ImageOutput.create("png")
+    height, width = pixels.shape[:2]
+    assert png.open(str(path), oiio.ImageSpec(width, height, 3, "uint8"))
+    assert png.write_image(pixels) and png.close()
+
+
+def test_edited_image_map_renders_exactly_the_frames_that_use_it(coordinator, tmp_path):
+    # Frames 5-8 map tex.png onto a box (with frame coherence, fc-master's default): a new
+    # picture in it renders 5-8 again, and 1-4, which never read it, stay.
+    tex = tmp_path / "tex.png"
+    ramp = np.zeros((16, 16, 3), np.uint8)
+    ramp[:, :, 0] = np.arange(16, dtype=np.uint8)[None, :] * 16
+    write_png(tex, ramp)
+    late = ('box { <0, 0, 0>, <1, 1, 0.2> scale 1.4 translate <0.6, 0.2, -1> '
+            'pigment { image_map { png "tex.png" } } }')
+    stderr, stats = rendered_again_after_edit(
+        coordinator, tmp_path, late, lambda: write_png(tex, 255 - ramp), fc=True)
+    assert_rendered_again_exactly(stderr, stats, [5, 6, 7, 8], tex)
+
+
+def test_edited_font_renders_exactly_the_frames_that_use_it(coordinator, tmp_path):
+    # Frames 5-8 write text in font.ttf: another typeface under that name renders 5-8 again.
+    font = tmp_path / "font.ttf"
+    font.write_bytes(open("/usr/share/povray-3.7/include/timrom.ttf", "rb").read())
+    late = ('text { ttf "font.ttf" "fc" 0.2, 0 scale 0.9 translate <0.4, 0.3, -1.5> '
+            'pigment { color rgb <1, 1, 0.2> } }')
+    stderr, stats = rendered_again_after_edit(
+        coordinator, tmp_path, late,
+        lambda: font.write_bytes(open("/usr/share/povray-3.7/include/cyrvetic.ttf",
+                                      "rb").read()))
+    assert_rendered_again_exactly(stderr, stats, [5, 6, 7, 8], font)
+
+
+def test_file_created_where_file_exists_looked_renders_those_frames(coordinator, tmp_path):
+    # Frames 5-8 include extra.inc when it exists; it does not at first. Created, it makes
+    # exactly those frames render again (1-4 never looked for it).
+    extra = tmp_path / "extra.inc"
+    late = '#if (file_exists("extra.inc")) #include "extra.inc" #end'
+    stderr, stats = rendered_again_after_edit(
+        coordinator, tmp_path, late,
+        lambda: extra.write_text("sphere { <1, 2, 0>, 0.3 pigment { color rgb <0, 1, 1> } }\n"))
+    assert_rendered_again_exactly(stderr, stats, [5, 6, 7, 8], extra)
 
 
 def file_kind(path):
@@ -504,30 +633,37 @@ def test_image_writer_refuses_malformed_requests(tmp_path):
 
 
 OUTPUT_NAMES = {
-    # +Orenders/clk.png names PNG frames clk1.png ... as POV-Ray does, not clk.png1.tga; with
-    # no format named, the name's extension chooses it (Targa stays the default otherwise).
-    "png-named": (["+FN", "+Orenders/clk.png"], "clk%d.png", ["+FN"], "moving%d.png"),
-    "png-from-name": (["+Orenders/clk.png"], "clk%d.png", ["+FN"], "moving%d.png"),
-    "exr-from-name": (["+Orenders/clk.exr"], "clk%d.exr", ["+FE"], "moving%d.exr"),
-    # Targa named: POV-Ray keeps a foreign extension and adds its own.
-    "targa-named": (["+FT", "+Orenders/clk.png"], "clk.png%d.tga", [], "moving%d.tga"),
+    # The names and format one povray-fc process gives the frames: +Orenders/clk.png names PNG
+    # frames clk1.png ...; with no format named, POV-Ray's povray.ini chooses it (Debian's:
+    # PNG), not the name; Targa named keeps a foreign extension and adds its own.
+    "png-named": ["+FN", "+Orenders/clk.png"],
+    "format-from-povray-ini": ["+Orenders/clk.png"],
+    "exr-named": ["+FE", "+Orenders/clk.exr"],
+    "foreign-extension": ["+Orenders/clk.exr"],
+    "targa-named": ["+FT", "+Orenders/clk.png"],
 }
 
 
 @pytest.mark.parametrize("name", sorted(OUTPUT_NAMES))
-def test_output_name_with_extension(coordinator, coordinator_references, tmp_path, name):
-    opts, pattern, ref_opts, ref_pattern = OUTPUT_NAMES[name]
+def test_output_names_and_format_as_povray_fc(coordinator, tmp_path, name):
+    opts = SMALL[1:] + OUTPUT_NAMES[name]   # no +FT: the options alone name the format
+    scene = os.path.join(COORDINATOR_SCENES, SCENE)
+    single, master = tmp_path / "single", tmp_path / "master"
+    (single / "renders").mkdir(parents=True)      # POV-Ray does not create it
+    master.mkdir()
+    r = subprocess.run([coordinator_renderer(), scene, "-D"] + opts, cwd=single,
+                       capture_output=True, text=True, timeout=120)
+    assert r.returncode == 0, r.stderr[-2000:]
+    want = sorted(os.listdir(single / "renders"))
+    assert len(want) == 8, want
     # From another directory, without -o: the frames go where POV-Ray would write them.
-    r = coordinator.run(["--no-fc", "--quiet", os.path.join(COORDINATOR_SCENES, SCENE)] +
-                        SMALL + opts, cwd=tmp_path)
+    r = coordinator.run(["--no-fc", "--quiet", scene] + opts, cwd=master)
     assert r.returncode == 0, r.stderr
-    out = tmp_path / "renders"
-    assert frame_files(out) == sorted(pattern % n for n in range(1, 9))
-    pixel_type = "half" if pattern.endswith(".exr") else "uint8"
-    ref = coordinator_references.frames(SCENE, SMALL + ref_opts, pixel_type)
-    for n in range(1, 9):
-        got = load_rgb(out / (pattern % n), pixel_type)
-        assert (got == ref[ref_pattern % n]).all(), pattern % n
+    assert frame_files(master / "renders") == want
+    for f in want:
+        pixel_type = "half" if f.endswith(".exr") else "uint8"
+        got = load_rgb(master / "renders" / f, pixel_type)
+        assert (got == load_rgb(single / "renders" / f, pixel_type)).all(), f
 
 
 @pytest.mark.parametrize("opt,words", [
@@ -547,15 +683,6 @@ def test_unsupported_output_is_refused(coordinator, tmp_path, opt, words):
 
 
 # --- the live preview -------------------------------------------------------------------------
-
-def test_preview_unit_tests():
-    # When the preview writes: not before its first write is due, not for a render about to
-    # end, not at the end of a render that wrote none (preview_test.cpp).
-    r = subprocess.run(["make", "-C", str(TOP / "coordinator"), "test-preview"],
-                       capture_output=True, text=True)
-    assert r.returncode == 0, r.stdout + r.stderr
-    assert "all checks passed" in r.stdout
-
 
 # Sequence division has not loaded OpenImageIO when the preview is first due: it loads then,
 # in the background, and the preview follows.

@@ -23,7 +23,7 @@ from conftest import (COORDINATOR_SCENES, coordinator_renderer, coordinator_stat
 pytestmark = pytest.mark.usefixtures("coordinator_build")
 
 SCENE = "moving.pov"
-SLOW = ["+W320", "+H240", "+KFI1", "+KFF16", "+A0.1", "+AM2", "+R3"]
+SLOW = ["+FT", "+W320", "+H240", "+KFI1", "+KFF16", "+A0.1", "+AM2", "+R3"]
 
 
 class Terminal:
@@ -191,7 +191,11 @@ def test_summary_and_stats_of_a_run(coordinator, tmp_path):
     assert "retried" in r.stderr
     # Per-frame times, and what frame coherence saved (estimated from the first frames).
     assert all(f["time"] > 0 for f in s["frames"])
-    assert re.search(r"frame time .*median [\d.]+ s.*slowest [\d.]+ s \(frame \d+\)", r.stderr)
+    assert re.search(r"frame time: median [\d.]+ s.*slowest [\d.]+ s \(frame \d+\)", r.stderr)
+    # The summary fits a terminal of 80 columns.
+    lines = r.stderr.splitlines()
+    start = next(i for i, line in enumerate(lines) if "frame(s) rendered" in line)
+    assert all(len(line) < 80 for line in lines[start:]), "\n".join(lines[start:])
     saved = s["fc_saved"]
     assert saved and saved["rays_without_fc"] > saved["rays_spent"] > 0, saved
     assert "frame coherence saved about" in r.stderr, r.stderr
@@ -201,7 +205,7 @@ def test_summary_and_stats_of_a_run(coordinator, tmp_path):
 def test_stats_of_a_failed_run_keep_the_error(coordinator, tmp_path):
     out, stats = tmp_path / "out", tmp_path / "stats.json"
     r = coordinator.run(["--no-fc", "--division", "sequence", "--slaves", "2", "--stats",
-                         str(stats), "fails-late.pov", "+W64", "+H48", "+KFI1", "+KFF8", "-o",
+                         str(stats), "fails-late.pov", "+FT", "+W64", "+H48", "+KFI1", "+KFF8", "-o",
                          str(out)])
     assert r.returncode == 1
     s = coordinator_stats(stats)

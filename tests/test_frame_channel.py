@@ -24,9 +24,10 @@ def povray(args, tmp_path):
                           stdin=subprocess.DEVNULL)
 
 
-def records(path, with_files=False):
+def records(path, with_files=False, with_reads=False):
     """[(fields, rects, payload)] of a frame channel file; with_files, (fields, rects,
-    payload, file): file is the image file a whole-image record carries, or None."""
+    payload, file): file is the image file a whole-image record carries, or None; with_reads,
+    (fields, rects, payload, reads): reads is the text of the files the frame's parse read."""
     data = path.read_bytes()
     out, pos = [], 0
     while pos < len(data):
@@ -43,10 +44,16 @@ def records(path, with_files=False):
                 fields[key] = value
             i += 1
         size, file_size = int(fields["bytes"]), int(fields.get("file", 0))
+        reads_size = int(fields.get("reads", 0))
         payload = data[nl + 1:nl + 1 + size]
         file = data[nl + 1 + size:nl + 1 + size + file_size] if "file" in fields else None
-        out.append((fields, rects, payload, file) if with_files else (fields, rects, payload))
-        pos = nl + 1 + size + file_size
+        at = nl + 1 + size + file_size
+        reads = data[at:at + reads_size].decode()
+        if with_reads:
+            out.append((fields, rects, payload, reads))
+        else:
+            out.append((fields, rects, payload, file) if with_files else (fields, rects, payload))
+        pos = at + reads_size
     return out
 
 
@@ -156,6 +163,41 @@ def test_stop_and_end_of_file_end_the_render(tmp_path):
     r = channel_render(tmp_path, ["-A"], "render 1\n")
     assert r.returncode == 0, r.stderr
     assert len(records(tmp_path / "channel")) == 1
+
+
+def test_records_list_the_files_each_parse_read(tmp_path):
+    # A scene that includes late.inc from frame 3 on and looks for extra.txt, which is not
+    # there, along a library path. Every record lists this frame's lookups only: the scene
+    # and the include it opened (F), and each place it looked in vain (A: the current
+    # directory, then the library path; for the include too, before the library path).
+    lib = tmp_path / "lib"
+    lib.mkdir()
+    (lib / "late.inc").write_text("sphere { <1, 2, 0>, 0.3 pigment { color rgb 1 } }\n")
+    scene = tmp_path / "scene.pov"
+    scene.write_text(SCENE.read_text() + '#if (file_exists("extra.txt")) #end\n'
+                     '#if (frame_number >= 3) #include "late.inc" #end\n')
+    (tmp_path / "control").write_text("render 2\nrender 3\n")
+    argv = [str(POVRAY_FC), f"+I{scene}", "-D", "-P", "-V", "+FT", "-UA", "+L" + str(lib),
+            "Frame_Channel=channel", "Frame_Control=control"] + ANIMATION
+    r = subprocess.run(argv, cwd=tmp_path, capture_output=True, text=True, timeout=120,
+                       stdin=subprocess.DEVNULL)
+    assert r.returncode == 0, r.stderr
+    recs = records(tmp_path / "channel", with_reads=True)
+    assert [int(f["frame"]) for f, _, _, _ in recs] == [2, 3]
+    for fields, _, _, reads in recs:
+        assert int(fields["reads"]) == len(reads.encode())
+        lines = reads.splitlines()
+        # Invariant: each line once, the scene first (its parse opened it first).
+        assert len(lines) == len(set(lines)) and lines[0] == f"F\t{scene}", lines
+        assert "A\textra.txt" in lines and f"A\t{lib}/extra.txt" in lines, lines
+        assert not any(line.startswith("F\t") and "extra.txt" in line for line in lines)
+    frame2, frame3 = (reads.splitlines() for _, _, _, reads in recs)
+    assert set(frame2) <= set(frame3)
+    # The include: the places tried before lib (the current directory, then povray.ini's
+    # library paths) absent, then the file found in lib; nothing tried after it.
+    late = [line for line in frame3 if line not in frame2]
+    assert late[0] == "A\tlate.inc" and late[-1] == f"F\t{lib}/late.inc", late
+    assert all(line.startswith("A\t/") and line.endswith("/late.inc") for line in late[1:-1])
 
 
 @pytest.mark.parametrize("control,message", [

@@ -1,4 +1,5 @@
-"""Patch 0036 replays the tokens of loop and macro bodies: a parse must come out as a plain one.
+"""Lexeme replay (patches 0452-0460, speedups/) replays the tokens of loop and macro bodies: a
+parse must come out as a plain one.
 
 Each scene below reads every kind of token inside #while, #for and macro bodies (numbers
 of every form, symbols, array elements, vector components, directives, comments, strings,

@@ -87,7 +87,7 @@ def test_option_summary_says_whether_frame_coherence_is_on(tmp_path, value, show
 
 
 def test_render_progress_is_rate_limited_and_ends_complete(tmp_path):
-    # Patch 0040: a progress message goes out at most every 100 ms, and always the one that
+    # Patch 0440: a progress message goes out at most every 100 ms, and always the one that
     # completes the render area. A 320x240 frame has 80 render blocks; before the patch each
     # sent one, and the console showed a status line for nearly every one of them.
     start = time.monotonic()
