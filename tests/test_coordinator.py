@@ -6,6 +6,7 @@ POV-Ray process rendering the same frames. The `coordinator` fixture kills, by p
 a test leaves behind; tests also assert that nothing was left.
 """
 import os
+import re
 import resource
 import signal
 import subprocess
@@ -377,10 +378,14 @@ def test_renderer_console_does_not_wake_the_slave(coordinator, coordinator_refer
                          "1", SCENE] + opts + ["-o", str(out)])
     assert r.returncode == 0, r.stderr
     assert_same_frames(out, coordinator_references.frames(SCENE, opts))
-    woken = sum(1 for line in polls.read_text().splitlines() if line.startswith("poll("))
+    # Count the polls something woke (a readable descriptor), not the 200 ms timeouts the
+    # slave's heartbeat clock needs: those grow with the wall time of the run, so on a slow
+    # host they say nothing about the console.
+    results = re.findall(r"^poll\(.*\) = (\d+)", polls.read_text(), re.MULTILINE)
+    woken = sum(1 for n in results if int(n) > 0)
     # Invariant: fewer than three wake-ups a frame (the old slave, woken by every console
-    # write, polled 98-104 times for these 24 frames, the new one 47).
-    assert 0 < woken < 3 * frames, woken
+    # write, polled 98-104 times for these 24 frames, the new one about 47).
+    assert 0 < woken < 3 * frames, (woken, len(results))
 
 
 def test_chatty_scene_fills_the_console_and_still_renders(coordinator, coordinator_references,
