@@ -64,7 +64,7 @@ COMPILED_BY   := povray-fc (frame-coherent POV-Ray, built from Debian povray $(P
 
 PYTHON := /usr/bin/python3
 
-.PHONY: all deps test fast-test unit-test patch-check integration-test demo clean distclean
+.PHONY: all deps test fast-test unit-test patch-check results-check integration-test demo clean distclean
 .DELETE_ON_ERROR:
 
 all: $(BIN)/povray-fc $(BIN)/povrayfc-mask.so coordinator
@@ -186,12 +186,18 @@ FORCE:
 
 # --- tests and demo ----------------------------------------------------------
 
-# The fast tier first (unit tests and the patch series' checks: seconds), then the
-# integration tests (minutes).
+# The fast tier first (unit tests, the patch series' checks and the README's results table:
+# seconds), then the integration tests (minutes).
 test: fast-test
 	$(MAKE) --no-print-directory integration-test
 
-fast-test: unit-test patch-check
+fast-test: unit-test patch-check results-check
+
+# The README's results table says what the measurement scripts wrote into docs/
+# (scripts/results-table), and its check fails on a table that does not.
+results-check:
+	$(PYTHON) $(TOP)/scripts/results-table --check
+	cd $(TOP) && $(PYTHON) -m pytest -q -p no:cacheprovider tests/test_results_table.py
 
 # Every patch a DEP-3 header and under 150 lines (scripts/check-patches).
 patch-check:

@@ -13,7 +13,7 @@ from fcscript import BIN, DEBIAN_POVRAY, POVRAY_FC, TOP, read_pixels  # noqa: E4
 
 SCENES = TOP / "scenes"
 # Options for scenes/coordinator-test/moving.pov that keep fc-master busy for a while: about
-# 11 s on one processor of the eighteenth session's machine (24 frames, deep anti-aliasing).
+# 11 s on one processor of the 2026-12-04 (17305d6) machine (24 frames, deep anti-aliasing).
 # For tests that act while a render runs (a preview's first write 5 s in, a host added 1 s
 # in); shorter renders ended too close to those moments on a fast machine.
 LONG_COORDINATOR_RENDER = ["+FT", "+W320", "+H240", "+KFI1", "+KFF24", "+A0.1", "+AM2", "+R4"]

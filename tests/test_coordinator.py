@@ -489,7 +489,7 @@ def test_killed_renderer_is_retried(coordinator, coordinator_references, tmp_pat
     # Invariant: a killed renderer is the host's problem: its work is done again elsewhere.
     assert r.returncode == 0, r.stderr
     assert "killed by signal 9" in r.stderr and "trying again" in r.stderr, r.stderr
-    # The warning says what SIGKILL usually means (issue 9 retried, but said only "stopped").
+    # The warning says what SIGKILL usually means, not only that the renderer "stopped".
     assert "out of memory" in r.stderr, r.stderr
     # Invariant: only POV-Ray's error lines are shown, never its progress lines.
     assert "Rendered" not in r.stderr, r.stderr

@@ -273,7 +273,7 @@ def test_records_of_frames_reach_the_disk_before_the_end(coordinator, tmp_path):
 
 
 def fnv1a64(data):
-    """64-bit FNV-1a: how fc-master hashed a frame's pixels before the thirteenth session."""
+    """64-bit FNV-1a: how fc-master hashed a frame's pixels before 2026-12-04 (342cbf3)."""
     h = 14695981039346656037
     for byte in data:
         h = ((h ^ byte) * 1099511628211) & 0xFFFFFFFFFFFFFFFF

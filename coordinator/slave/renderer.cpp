@@ -71,7 +71,7 @@ bool Renderer::start(const RendererConfig &config, int first, std::string &err)
     // slave's is, each wake-up preempted the waker and cost two context switches. A batch
     // task's wake-ups wait for the tick instead (the master and slave still preempt it):
     // pinned to one processor, a renderer's fixed cost per frame fell from 1.18 to 0.87 ms
-    // and its switches from 152 to 37 a frame; docs/history.md, "Twenty-first session".
+    // and its switches from 152 to 37 a frame; docs/history.md, "2026-12-05 (7cb4f0f)".
     bool ok = start_child(argv, config.cwd, config.nice, child_, err,
                           {{kChannelFd, chan[1]}, {kControlFd, ctl[0]}}, true);
     close(chan[1]);

@@ -23,7 +23,7 @@
 //   closed-form solution sin(theta/2) = -k sn(K + t sqrt(g/L) | k), k = sin(Theta0/2),
 //   with Jacobi's elliptic sn and K = K(k); its period is T = 4 sqrt(L/g) K(k). Both
 //   come from one arithmetic-geometric mean (Abramowitz and Stegun 17.6 and 16.4),
-//   four or five steps to double precision. (Until the fourteenth session the angle
+//   four or five steps to double precision. (Until 2026-12-04 (7b69f56) the angle
 //   was integrated with up to 400 Runge-Kutta steps a frame, error about 1e-8 rad:
 //   half of every frame's set-up time went to that loop in the parser, a cost the
 //   paper's scene did not have and that every slave of frame division paid again.)
