@@ -70,7 +70,7 @@ def test_a_changed_measurement_fails_the_check_until_rebuilt(tmp_path):
 def test_missing_files_say_not_measured_and_present_ones_give_rows(tmp_path):
     docs, readme = copy_docs(tmp_path)
     run("--docs", docs, "--readme", readme)
-    assert table_of(readme).count("not measured yet") == 2
+    assert table_of(readme).count("not measured yet") == 3
     with open(docs / "liveness-goals.csv", "w", newline="") as f:
         w = csv.DictWriter(f, fieldnames=["scenario", "measured_s", "goal_s", "met", "note"])
         w.writeheader()
@@ -84,12 +84,24 @@ def test_missing_files_say_not_measured_and_present_ones_give_rows(tmp_path):
         for name, ratio in (("clockd", 1.5), ("fc-tests/fog", 1.1), ("fc-tests/fly_out", 3.0)):
             w.writerow(dict.fromkeys(fields, "0") | {"animation": name, "size": "160x120", "changed": "10",
                                                       "ratio": str(ratio), "followable": "True"})
+    memory = ["config", "budget_mib", "store_mib", "store_bytes_per_pixel", "peak_rss_mib", "wall_s",
+              "traced_after_first", "over_budget_blocks", "differ"]
+    with open(docs / "fc-memory.csv", "w", newline="") as f:
+        w = csv.DictWriter(f, fieldnames=memory)
+        w.writeheader()
+        w.writerow(dict.fromkeys(memory, "0") | {"config": "on", "budget_mib": "", "store_mib": "2048.0",
+                                                  "store_bytes_per_pixel": "1035", "traced_after_first": "900"})
+        w.writerow(dict.fromkeys(memory, "0") | {"config": "budget", "budget_mib": "512", "store_mib": "511.5",
+                                                  "traced_after_first": "5000"})
     assert run("--check", "--docs", docs, "--readme", readme).returncode == 1
     run("--docs", docs, "--readme", readme)
     table = table_of(readme)
     assert "not measured yet" not in table
     assert "| worst 12.5 s (missed) | <= 10.0 s |" in table
-    assert "median 1.50x (met), worst 3.00x (fc-tests/fly_out)" in table
+    assert "median 1.50x (met), worst 1.50x (met) (clockd)" in table
+    assert "median 2.05x (missed), worst 3.00x (met) (fc-tests/fly_out)" in table
+    assert "| 2.000 GiB (missed), 1035 B/pixel |" in table
+    assert "store 511.5 MiB (within the budget), 5000 pixels traced after frame 1 (without a budget 900)" in table
 
 
 def test_a_readme_without_markers_is_a_clear_error(tmp_path):
