@@ -120,6 +120,7 @@ bool BlockTracer::Begin(std::uint32_t serial, int left, int top, int right, int 
     record_ = plan.mode == FramePlan::Mode::kRecord;
     serial_ = serial;
     tracedSamples_ = reusedSamples_ = 0;
+    conesPassedBudget_ = false;
 
     next_.left = left;
     next_.top = top;
@@ -162,7 +163,17 @@ bool BlockTracer::Begin(std::uint32_t serial, int left, int top, int right, int 
     // The block's clean samples: those none of whose rays may meet a change. Most blocks
     // are far from every change, which the cones around their segments show at once.
     const std::size_t n = old_->samples.size();
-    if (!old_->fansBuilt) BuildRecordFans(*old_);
+    if (!old_->fansBuilt) {
+        BuildRecordFans(*old_);
+        // The cones count against the memory budget too: past it, the record goes (Keep
+        // drops it) and the block is traced in full like one never recorded.
+        if (!plan.store->Keep(serial)) {
+            old_ = nullptr;
+            leftOut_ = true;
+            conesPassedBudget_ = true;
+            return false;
+        }
+    }
     const BlockHulls reach = FindBlockHulls(old_->fans, *plan.changes);
     bool anyDirty = false;
     if (reach.Any() || old_->hasEverything || orderMatters || unitsChanged) {
@@ -411,7 +422,7 @@ void BlockTracer::End() {
         }
     }
     old_ = nullptr;
-    if (!plan.store->Put(serial_, std::move(record))) ++plan.counters->overBudgetBlocks;
+    if (!plan.store->Put(serial_, std::move(record)) || conesPassedBudget_) ++plan.counters->overBudgetBlocks;
     active_ = false;
     endedActive_ = true;
 }

@@ -902,7 +902,7 @@ TEST_F(FrameCoherenceRun, AStoreOverItsBudgetTracesTheBlocksLeftOutAndStaysExact
             }
         ASSERT_NE(fc.Plan().store, nullptr) << "frame " << frame;  // recording pays: never paused
         budget = fc.Plan().store->BudgetBytes();
-        EXPECT_LE(fc.Plan().store->RecordBytes(), budget) << "frame " << frame;
+        EXPECT_LE(fc.Plan().store->MemoryBytes(), budget) << "frame " << frame;
         fc.EndFrame(0);
         EXPECT_EQ(r.image, RenderFull(scene)) << "frame " << frame;
         EXPECT_GT(fc.LastStats().overBudgetBlocks, 0u) << "frame " << frame;

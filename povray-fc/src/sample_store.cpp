@@ -34,7 +34,7 @@ void SampleStore::Drop(std::size_t serial) {
 }
 
 std::size_t SampleStore::MemoryBytes() const {
-    std::size_t bytes = sizeof(*this) + blocks_.capacity() * sizeof(blocks_[0]);
+    std::size_t bytes = TableBytes();
     for (const auto &b : blocks_)
         if (b) bytes += b->MemoryBytes();
     return bytes;

@@ -131,8 +131,11 @@ class SampleStore {
     static constexpr std::size_t kNoBudget = ~std::size_t(0);
 
     SampleStore() = default;
+    // The budget covers the whole store, its table of blocks as well as the records.
     explicit SampleStore(std::size_t blocks, std::size_t budgetBytes = kNoBudget)
-        : blocks_(blocks), bytes_(blocks, 0), touched_(blocks, 0), leftOut_(blocks, 0), budget_(budgetBytes) {}
+        : blocks_(blocks), bytes_(blocks, 0), touched_(blocks, 0), leftOut_(blocks, 0), budget_(budgetBytes) {
+        total_.store(TableBytes(), std::memory_order_relaxed);
+    }
 
     std::size_t BlockCount() const { return blocks_.size(); }
     // The stored record of block `serial`, or nullptr (never rendered, or out of range).
@@ -145,16 +148,18 @@ class SampleStore {
         blocks_[serial] = std::move(record);
         return Keep(serial);
     }
-    // Block `serial`'s record changed size in place: accounts for it, and drops it when it
-    // no longer fits the budget. Returns whether it is kept.
+    // Block `serial`'s record changed size in place (traced again, or its cones built):
+    // accounts for it, and drops it when it no longer fits the budget. Returns whether it
+    // is kept.
     bool Keep(std::size_t serial);
     void Clear() {
         for (std::size_t i = 0; i < blocks_.size(); ++i) Drop(i);
     }
     // Block `serial` has no record because the budget left it out.
     bool LeftOut(std::size_t serial) const { return serial < leftOut_.size() && leftOut_[serial]; }
-    // What the records hold now, and the budget.
-    std::size_t RecordBytes() const { return total_.load(std::memory_order_relaxed); }
+    // What the store holds now as the budget counts it (MemoryBytes, kept up to date by
+    // Put and Keep), and the budget.
+    std::size_t AccountedBytes() const { return total_.load(std::memory_order_relaxed); }
     std::size_t BudgetBytes() const { return budget_; }
 
     // Block `serial` was rendered (or reused) this frame. From the thread rendering it.
@@ -177,12 +182,13 @@ class SampleStore {
 
   private:
     void Drop(std::size_t serial);
+    std::size_t TableBytes() const { return sizeof(*this) + blocks_.capacity() * sizeof(blocks_[0]); }
 
     std::vector<std::unique_ptr<BlockRecord>> blocks_;
     std::vector<std::size_t> bytes_;     // per block: what its record was last counted at
     std::vector<std::uint8_t> touched_;  // per block, this frame
     std::vector<std::uint8_t> leftOut_;  // per block: the budget dropped its record
-    std::atomic<std::size_t> total_{0};  // the sum of bytes_
+    std::atomic<std::size_t> total_{0};  // TableBytes() and the sum of bytes_
     std::size_t budget_ = kNoBudget;
 };
 
