@@ -98,6 +98,23 @@ def test_endless_frame_is_reported_and_keep_going_renders_the_rest(
     assert coordinator.wait_no_processes() == []
 
 
+def test_a_slow_frame_is_copied_but_completes(coordinator, coordinator_references, tmp_path):
+    """A frame far slower than the others (here its parse loops for tens of seconds) passes
+    its first deadline like a hung one: it gets a copy, but only a later attempt that also
+    outlives the hang deadline (a minute at least) would give it up. It completes."""
+    out = tmp_path / "out"
+    scene = frame_scene(tmp_path, "slow.pov",
+                        "#declare I = 0; #while (I < 18000000) #declare I = I + 1; #end")
+    options = ["+FT", "+W160", "+H120", "+KFI1", "+KFF8"]
+    r = coordinator.run(PATIENT + ["--no-fc", "--division", "frame", "--slaves", "2", str(scene)]
+                        + options + ["-o", str(out)], cwd=tmp_path, timeout=300)
+    assert r.returncode == 0, r.stderr
+    assert "frame 5 has not finished" in r.stderr, r.stderr  # it did pass its first deadline
+    assert "hangs" not in r.stderr, r.stderr
+    assert_same_as(out, "slow", coordinator_references.frames(SCENE, options), skip=None)
+    assert coordinator.wait_no_processes() == []
+
+
 def test_scene_error_at_one_frame(coordinator, coordinator_references, tmp_path):
     out = tmp_path / "out"
     scene = frame_scene(tmp_path, "broken5.pov", '#error "frame five is broken"')

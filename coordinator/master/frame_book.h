@@ -69,10 +69,16 @@ public:
     // stalls (liveness.h), the hosts they happened on, and POV-Ray's last words.
     struct Trouble {
         int failures = 0, stalls = 0;
+        double first_stall = -1;  // when a job of the frame first stalled (-1: never)
         std::set<std::string> hosts;
         std::string last_words;
     };
     Trouble &trouble(int index) { return trouble_[index]; }
+    // When a job of frame index first stalled, or -1 (no entry made).
+    double first_stall(int index) const {
+        auto it = trouble_.find(index);
+        return it == trouble_.end() ? -1 : it->second.first_stall;
+    }
 
     // Frame index i is given up (it failed or hung on the hosts that tried it, or the scene
     // fails there and --keep-going goes on): no file; why says so.

@@ -54,4 +54,12 @@ double Liveness::deadline(int slave, int host, double pixels, bool copy, double 
     return std::max(kFloor, kFactor * expected);
 }
 
+double Liveness::hang_deadline(int host, double pixels) const
+{
+    double per_pixel = seconds_per_pixel(host);
+    if (per_pixel <= 0)
+        return std::max(kHangFloor, fallback_);
+    return std::max(kHangFloor, kHangFactor * per_pixel * pixels);
+}
+
 } // namespace fc

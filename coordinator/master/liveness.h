@@ -8,7 +8,13 @@
 // and the master looks every 0.25 s); before a job of any host finished, the master's --timeout. A
 // renderer's first frame (with frame coherence traced in full) and a copy of another slave's
 // job (its renderer starts afresh or jumps) get the fresh-start factor on top. A stalled job
-// gets a copy on another slave (schedule.h), and a frame stalled twice hangs.
+// gets a copy on another slave (schedule.h).
+//
+// A frame hangs (it is given up, with POV-Ray's last words) only when a second attempt has
+// not finished within the hang deadline: kHangFactor times the expected time, never less
+// than kHangFloor. A slow frame and an endless one look alike from outside (a #while loop
+// keeps the parser's token count growing), so the first deadline only buys a copy, and a
+// frame many times slower than the others but finite still completes.
 #pragma once
 
 #include <cstddef>
@@ -23,6 +29,8 @@ public:
     static constexpr double kFloor = 8.0;       // seconds: no deadline is shorter
     static constexpr double kFactor = 4.0;      // times the host's median job
     static const size_t kHistory = 31;          // recent jobs per host
+    static constexpr double kHangFloor = 60.0;  // seconds: no frame hangs sooner
+    static constexpr double kHangFactor = 20.0; // times the host's median job
 
     // fallback: the deadline before any job finished (the master's --timeout).
     explicit Liveness(double fallback) : fallback_(fallback) {}
@@ -34,6 +42,9 @@ public:
     // The deadline of a job of `pixels` on host, begun by slave; copy: it copies another
     // slave's job. fresh_cost: a fresh start in coherent frames (cost_model.h).
     double deadline(int slave, int host, double pixels, bool copy, double fresh_cost) const;
+
+    // The deadline of a second attempt at a frame that stalled once (its verdict: it hangs).
+    double hang_deadline(int host, double pixels) const;
 
     // The median seconds a pixel took on host (its recent jobs; else on every host; 0: none).
     double seconds_per_pixel(int host) const;

@@ -32,3 +32,17 @@ TEST(Liveness, FourTimesTheHostsMedianWithAFloor)
     fast.job_took(1, 100, 1000, 0.1);
     EXPECT_DOUBLE_EQ(fast.deadline(1, 100, 1000, false, 1), Liveness::kFloor);
 }
+
+TEST(Liveness, ASecondAttemptHangsOnlyAfterTwentyTimesTheMedianAndAMinute)
+{
+    Liveness before_any(120);
+    EXPECT_DOUBLE_EQ(before_any.hang_deadline(100, 1000), 120);
+    Liveness l(120);
+    for (double s : {4.0, 4.0, 4.0})
+        l.job_took(1, 100, 1000, s);
+    EXPECT_DOUBLE_EQ(l.hang_deadline(100, 1000), 80);
+    EXPECT_GT(l.hang_deadline(100, 1000), l.deadline(1, 100, 1000, true, 3));
+    Liveness fast(120);
+    fast.job_took(1, 100, 1000, 0.1);
+    EXPECT_DOUBLE_EQ(fast.hang_deadline(100, 1000), Liveness::kHangFloor);
+}

@@ -74,6 +74,8 @@ private:
     // Liveness (master_liveness.cpp): stalled jobs, frames that hang or keep failing.
     void check_stalls();
     void job_stalled(const Job &job, double seconds, double deadline);
+    // Whether job began after a job of its frame stalled: a copy or a re-render.
+    bool second_attempt(const Job &job) const;
     void frame_hangs(int index);
     void abandon(const Job &job);
     void on_abandoned(const Failure &f, const std::string &host);

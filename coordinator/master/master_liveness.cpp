@@ -41,12 +41,21 @@ void Master::check_stalls()
             pixels += double(sched_->tile(tile).area());
         double deadline = liveness_.deadline(j.slave, s->dtid, pixels, j.dup_of >= 0,
                                              costs_.fresh_cost());
+        // An attempt begun after a job of its frame stalled decides whether the frame hangs.
+        if (second_attempt(j))
+            deadline = std::max(deadline, liveness_.hang_deadline(s->dtid, pixels));
         if (t - j.rendering > deadline)
             late.push_back({j, t - j.rendering, deadline});
     }
     for (const Late &l : late)
         if (!failed_)
             job_stalled(l.job, l.seconds, l.deadline);
+}
+
+bool Master::second_attempt(const Job &job) const
+{
+    double first = book_->first_stall(job.index);
+    return first >= 0 && job.rendering >= first;
 }
 
 // A job is past its deadline: a copy goes to another slave, or, when no other slave can take
@@ -56,12 +65,17 @@ void Master::job_stalled(const Job &job, double seconds, double deadline)
     SlaveInfo *s = cluster_.slave(job.slave);
     std::string host = s ? s->host : "?";
     int frame = book_->number(job.index);
+    // The jobs of one frame that ran side by side (its tiles on several slaves, all parsing
+    // the same slow frame) stall together: only a later attempt's stall means it hangs.
+    bool second = second_attempt(job);
     FrameBook::Trouble &trouble = book_->trouble(job.index);
     trouble.stalls++;
+    if (trouble.first_stall < 0)
+        trouble.first_stall = now();
     trouble.hosts.insert(host);
     debug_log("job %d (frame %d) stalled on t%x after %.1f s (deadline %.1f s)", job.id, frame,
               unsigned(job.slave), seconds, deadline);
-    if (trouble.stalls >= 2) {
+    if (second) {
         frame_hangs(job.index);
         return;
     }
