@@ -59,7 +59,8 @@ bool Master::second_attempt(const Job &job) const
 }
 
 // A job is past its deadline: a copy goes to another slave, or, when no other slave can take
-// one, the job is abandoned and runs again. The second stall of a frame means it hangs.
+// one, the job is abandoned and runs again. The stall of an attempt begun after the frame's
+// first stall (a copy, a re-render) means the frame hangs.
 void Master::job_stalled(const Job &job, double seconds, double deadline)
 {
     SlaveInfo *s = cluster_.slave(job.slave);
