@@ -177,19 +177,23 @@ struct FcResult {
     std::uint64_t tracedSamples = 0;
     std::uint64_t changedPixels = 0;   // ChangedCount over the traced blocks
     std::uint64_t changedRectArea = 0; // the area of their ChangedRect
+    bool stored = false;               // a store was kept (recording not paused)
+    std::size_t storeBytes = 0, storeBudget = 0;  // its MemoryBytes and budget at the frame's end
 };
 
 // Renders like the patched TraceTask: Begin per block, Reuse or trace each sample, End.
 // With `shown` (the front end's image, kept from frame to frame), only the pixels End()
 // reports changed are copied into it, as the patched trace task sends them.
+// `budgetBytes`: the store's memory budget (0: the default).
 FcResult RenderFc(const ToyScene &scene, int frame, SceneEffects effects = {}, std::vector<std::string> inexact = {},
-                  int threads = 1, Image *shown = nullptr) {
+                  int threads = 1, Image *shown = nullptr, std::uint64_t budgetBytes = 0) {
     FrameCoherence &fc = FrameCoherence::Get();
     SceneSignature sig = Signature(scene);
     sig.inexactEffects = inexact;
     PublishSceneSignature(kScene, sig);
     FrameSetup setup = ToySetup(frame, threads);
     setup.frontEndKeepsImage = shown != nullptr;
+    setup.memoryBudgetBytes = budgetBytes;
     fc.BeginFrame(true, setup, kScene, effects);
     FcResult r;
     r.image.assign(std::size_t(kW) * kH * 5, 0.0f);
@@ -228,6 +232,11 @@ FcResult RenderFc(const ToyScene &scene, int frame, SceneEffects effects = {}, s
                         std::memcpy(&(*shown)[(std::size_t(y) * kW + x) * 5], &r.image[(std::size_t(y) * kW + x) * 5],
                                     5 * sizeof(float));
         }
+    if (const SampleStore *store = fc.Plan().store) {
+        r.stored = true;
+        r.storeBytes = store->MemoryBytes();
+        r.storeBudget = store->BudgetBytes();
+    }
     fc.EndFrame(0);
     return r;
 }
@@ -872,38 +881,11 @@ TEST_F(FrameCoherenceRun, AStoreOverItsBudgetTracesTheBlocksLeftOutAndStaysExact
     std::size_t budget = 0;
     for (int frame = 1; frame <= 6; ++frame) {
         const ToyScene scene = Frame(0.4 * frame);
-        PublishSceneSignature(kScene, Signature(scene));
-        FrameSetup setup = ToySetup(frame);
-        setup.memoryBudgetBytes = 20000;  // most of the eight blocks' records, not all
-        fc.BeginFrame(true, setup, kScene, {});
-        FcResult r;
-        r.image.assign(std::size_t(kW) * kH * 5, 0.0f);
-        BlockTracer tracer(fc.Plan());
-        std::uint32_t serial = 0;
-        for (int by = 0; by < kH; by += kBlock)
-            for (int bx = 0; bx < kW; bx += kBlock, ++serial) {
-                const int right = bx + kBlock - 1, bottom = by + kBlock - 1;
-                if (tracer.Begin(serial, bx, by, right, bottom)) {
-                    for (int y = by; y <= bottom; ++y)
-                        for (int x = bx; x <= right; ++x) tracer.StoredPixel(x, y, &r.image[(std::size_t(y) * kW + x) * 5]);
-                    continue;
-                }
-                RenderBlock(bx, by, right, bottom,
-                            [&](double x, double y, float c[5]) {
-                                if (tracer.Reuse(x, y, c)) return;
-                                tracer.BeginSample();
-                                TraceToy(scene, x, y, c);
-                                tracer.EndSample(x, y, c);
-                            },
-                            r.image);
-                for (int y = by; y <= bottom; ++y)
-                    for (int x = bx; x <= right; ++x) tracer.SetPixel(x, y, &r.image[(std::size_t(y) * kW + x) * 5]);
-                tracer.End();
-            }
-        ASSERT_NE(fc.Plan().store, nullptr) << "frame " << frame;  // recording pays: never paused
-        budget = fc.Plan().store->BudgetBytes();
-        EXPECT_LE(fc.Plan().store->MemoryBytes(), budget) << "frame " << frame;
-        fc.EndFrame(0);
+        // 20000 bytes: most of the eight blocks' records, not all.
+        const FcResult r = RenderFc(scene, frame, {}, {}, 1, nullptr, 20000);
+        ASSERT_TRUE(r.stored) << "frame " << frame;  // recording pays: never paused
+        budget = r.storeBudget;
+        EXPECT_LE(r.storeBytes, budget) << "frame " << frame;
         EXPECT_EQ(r.image, RenderFull(scene)) << "frame " << frame;
         EXPECT_GT(fc.LastStats().overBudgetBlocks, 0u) << "frame " << frame;
         if (frame > 1) {
