@@ -278,6 +278,15 @@ void Schedule::divide(int ri, int index, double when)
         if (o != r.owner.end() && load.count(o->second))
             first_division = false;
     }
+    // Tile t to the member furthest below its share (by speed).
+    auto deal = [&](int t) {
+        int best = m[0];
+        for (int s : m)
+            if (load[s] / target[s] < load[best] / target[best])
+                best = s;
+        share[best].push_back(t);
+        load[best] += tiles_[size_t(t)].area();
+    };
     if (first_division || costs_.cheap_moves()) {
         // Tiles dealt in raster order to the member furthest below its share (by speed):
         // every slave gets tiles all over the frame, so a region that is expensive to render
@@ -286,14 +295,8 @@ void Schedule::divide(int ri, int index, double when)
         // tiles spread over the frame keep a slave's measured pixels per second free of
         // where its tiles lie (moving the tiles nearest a slave's own, as with fc, can give
         // a slave a cluster of cheap or dear tiles and skew its speed).
-        for (int t : todo) {
-            int best = m[0];
-            for (int s : m)
-                if (load[s] / target[s] < load[best] / target[best])
-                    best = s;
-            share[best].push_back(t);
-            load[best] += tiles_[size_t(t)].area();
-        }
+        for (int t : todo)
+            deal(t);
     } else {
         std::vector<int> unowned;
         for (int t : todo) {
@@ -305,14 +308,8 @@ void Schedule::divide(int ri, int index, double when)
                 unowned.push_back(t);
             }
         }
-        for (int t : unowned) {
-            int best = m[0];
-            for (int s : m)
-                if (load[s] / target[s] < load[best] / target[best])
-                    best = s;
-            share[best].push_back(t);
-            load[best] += tiles_[size_t(t)].area();
-        }
+        for (int t : unowned)
+            deal(t);
         // Move tiles from the most to the least loaded member while it pays.
         bool moved = false;
         bool may_move = r.lagging && index - r.last_move >= kMoveGap;
