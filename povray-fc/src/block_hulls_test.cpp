@@ -19,14 +19,23 @@ Vec3 Normalised(Vec3 v) {
     return (1.0 / n) * v;
 }
 
+// What a block's recorder fills, and the cones built around it.
+struct RecordedRays {
+    std::vector<Segment> segments;
+    std::vector<std::uint8_t> fanOf;
+    FanApexes apexes;
+    BlockFans fans;
+    bool fansBuilt = false;
+};
+
 // A block's worth of rays as the hooks record them: camera rays from one eye in a narrow
 // cone (some to infinity), a shadow test towards one light from every hit (some blocked),
 // and a few reflections of finite length (loose segments).
-BlockRecord RecordedBlock(std::mt19937_64 &rng, double spread) {
+RecordedRays RecordedBlock(std::mt19937_64 &rng, double spread) {
     std::uniform_real_distribution<double> u(-1, 1), len(5, 40);
     const Vec3 eye{0, 2, -20}, light{10, 25, -5};
     const Vec3 look = Normalised(Vec3{0.8 * u(rng), 0.3 * u(rng), 1});
-    BlockRecord record;
+    RecordedRays record;
     SampleRecorder recorder;
     StartRecordingRays(recorder);
     for (int i = 0; i < 300; ++i) {
@@ -82,7 +91,7 @@ TEST(BlockHulls, NeverLeavesOutAHullASegmentMeets) {
     std::mt19937_64 rng(11);
     int meets = 0, rejected = 0;
     for (int trial = 0; trial < 60; ++trial) {
-        const BlockRecord record = RecordedBlock(rng, trial % 2 ? 0.02 : 0.3);
+        const RecordedRays record = RecordedBlock(rng, trial % 2 ? 0.02 : 0.3);
         const int count = trial % 3 == 0 ? 8 : (trial % 3 == 1 ? 200 : 700);
         const std::vector<Hull> hulls = SpreadHulls(rng, count, trial % 4 == 0 ? 3.0 : 0.4);
         const ChangeIndex changes(hulls);
@@ -106,7 +115,7 @@ TEST(BlockHulls, NeverLeavesOutAHullASegmentMeets) {
 
 TEST(BlockHulls, ANarrowBlockListsFewOfManySpreadHulls) {
     std::mt19937_64 rng(5);
-    const BlockRecord record = RecordedBlock(rng, 0.01);
+    const RecordedRays record = RecordedBlock(rng, 0.01);
     const ChangeIndex changes(SpreadHulls(rng, 300, 0.3));
     ASSERT_TRUE(changes.HasGrid());
     const BlockHulls reach = FindBlockHulls(record.fans, changes);
@@ -117,7 +126,7 @@ TEST(BlockHulls, ANarrowBlockListsFewOfManySpreadHulls) {
 
 TEST(BlockHulls, NoChangeNearTheBlockNeedsNoSegmentTest) {
     std::mt19937_64 rng(9);
-    const BlockRecord record = RecordedBlock(rng, 0.01);
+    const RecordedRays record = RecordedBlock(rng, 0.01);
     Hull far;
     far.box = Box{Vec3{500, 500, 500}, Vec3{501, 501, 501}};
     const ChangeIndex changes(std::vector<Hull>{far});
@@ -126,7 +135,7 @@ TEST(BlockHulls, NoChangeNearTheBlockNeedsNoSegmentTest) {
 
 TEST(BlockHulls, MoreCandidatesThanAMaskHoldsFallBackToTheWholeIndex) {
     std::mt19937_64 rng(21);
-    const BlockRecord record = RecordedBlock(rng, 0.5);
+    const RecordedRays record = RecordedBlock(rng, 0.5);
     // Big hulls everywhere: every fan reaches far more than 64 of them.
     const ChangeIndex changes(SpreadHulls(rng, 400, 4.0));
     const BlockHulls reach = FindBlockHulls(record.fans, changes);

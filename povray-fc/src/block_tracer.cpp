@@ -36,8 +36,16 @@ bool SampleIsDirty(const StoredSample &s, const BlockRecord &record, const Chang
                    const BlockHulls &reach, double &clearance, std::uint32_t &untested) {
     clearance = std::numeric_limits<double>::infinity();
     untested = 0;
-    const Segment *segment = record.segments.data() + s.firstSegment;
-    const std::uint8_t *fanOf = record.fanOf.data() + s.firstSegment;
+    thread_local std::vector<Segment> segments;
+    thread_local std::vector<std::uint8_t> fans;
+    segments.clear();
+    fans.clear();
+    if (!record.Unpack(s, segments, fans)) {
+        clearance = 0.0;
+        return true;
+    }
+    const Segment *segment = segments.data();
+    const std::uint8_t *fanOf = fans.data();
     for (std::uint32_t i = 0; i < s.segmentCount; ++i) {
         // An opaque blocker's test holds whatever else appears on its way (EndsOnChangedUnit).
         if (!segment[i].HullTested()) continue;
@@ -65,18 +73,37 @@ bool SampleIsDirty(const StoredSample &s, const BlockRecord &record, const Chang
 // traced anew: the changed unit's id may go to another unit from the next frame on.)
 bool EndsOnChangedUnit(const StoredSample &s, BlockRecord &record, const FramePlan &plan) {
     const std::vector<std::uint8_t> &changed = *plan.changedUnits;
-    Segment *segment = record.segments.data() + s.firstSegment;
+    // The units alone first: most samples ended on none that changed.
+    const std::uint8_t *p = record.packed.data() + s.firstByte;
+    bool any = false;
+    for (std::uint32_t i = 0; i < s.segmentCount && !any; ++i) {
+        std::uint32_t unit;
+        p = NextPacked(p, unit);
+        if (unit == Segment::kNoUnit) continue;
+        const std::uint32_t id = unit & ~Segment::kOpaqueBlocker;
+        any = id < changed.size() && changed[id] != FramePlan::kUnitKept;
+    }
+    if (!any) return false;
+    thread_local std::vector<Segment> segments;
+    thread_local std::vector<std::uint8_t> fans;
+    thread_local std::vector<std::uint32_t> headers;
+    segments.clear();
+    fans.clear();
+    headers.clear();
+    if (!record.Unpack(s, segments, fans, &headers)) return true;
     for (std::uint32_t i = 0; i < s.segmentCount; ++i) {
-        if (segment[i].unit == Segment::kNoUnit) continue;
-        const std::uint32_t unit = segment[i].UnitId();
+        const Segment &segment = segments[i];
+        if (segment.unit == Segment::kNoUnit) continue;
+        const std::uint32_t unit = segment.UnitId();
         if (unit >= changed.size() || changed[unit] == FramePlan::kUnitKept) continue;
-        if (!(segment[i].unit & Segment::kOpaqueBlocker)) return true;
+        if (!(segment.unit & Segment::kOpaqueBlocker)) return true;
         if (changed[unit] == FramePlan::kUnitRecoloured) continue;
-        const Blocker *blocker = plan.blockers ? DarkeningBlocker(segment[i], *plan.blockers) : nullptr;
+        const Blocker *blocker = plan.blockers ? DarkeningBlocker(segment, *plan.blockers) : nullptr;
         if (blocker == nullptr || blocker->unit >= plan.unitCount) return true;
         const std::uint32_t id = plan.unitIds[blocker->unit];
         if (id >= Segment::kOpaqueBlocker) return true;
-        segment[i].unit = id | Segment::kOpaqueBlocker;
+        // Too large an id for the width the segment was packed with: traced again.
+        if (!RewritePackedUnit(record.packed.data() + headers[i], id | Segment::kOpaqueBlocker)) return true;
         record.unitMask |= UnitMaskBit(id);
     }
     return false;
@@ -128,9 +155,11 @@ bool BlockTracer::Begin(std::uint32_t serial, int left, int top, int right, int 
     next_.bottom = bottom;
     next_.opaque = !record_;
     next_.samples.clear();
-    next_.segments.clear();
+    next_.packed.clear();
     next_.apexes.Clear();
+    nextSegments_.clear();
     nextFanOf_.clear();
+    nextFirstSegment_.clear();
     keptFromOld_.clear();
     const std::size_t area = std::size_t(right - left + 1) * std::size_t(bottom - top + 1);
     next_.pixels.assign(area * 5, 0.0f);
@@ -289,13 +318,14 @@ bool BlockTracer::Reuse(double x, double y, float rgbft[5]) {
     // Its segments stay in old_ until End gathers the new record's (one copy, not two).
     next_.samples.push_back(s);
     keptFromOld_.push_back(1);
+    nextFirstSegment_.push_back(0);
     ++reusedSamples_;
     return true;
 }
 
 void BlockTracer::BeginSample() {
     if (!active_ || !record_) return;
-    recorder_.Begin(next_.segments, nextFanOf_, next_.apexes, plan_->unitIds, plan_->unitCount);
+    recorder_.Begin(nextSegments_, nextFanOf_, next_.apexes, plan_->unitIds, plan_->unitCount, &next_.packed);
     StartRecordingRays(recorder_);
 }
 
@@ -319,11 +349,12 @@ void BlockTracer::EndSample(double x, double y, const float rgbft[5]) {
         recorder_.Discard();  // its segments say nothing
         s.segmentCount = StoredSample::kEverything;
     } else {
-        s.firstSegment = std::uint32_t(recorder_.First());
+        s.firstByte = std::uint32_t(recorder_.FirstByte());
         s.segmentCount = std::uint32_t(recorder_.Count());
     }
     next_.samples.push_back(s);
     keptFromOld_.push_back(0);
+    nextFirstSegment_.push_back(std::uint32_t(recorder_.First()));
 }
 
 void BlockTracer::MarkTraced(double x, double y) {
@@ -407,14 +438,14 @@ void BlockTracer::End() {
     record->pixels.assign(next_.pixels.begin(), next_.pixels.end());
     if (record_) {
         record->apexes = next_.apexes;
-        GatherSegments(*record);
+        const std::size_t live = GatherSegments(*record);
         // Grow the old cones by what was traced anew, unless much of the block is new
         // (cones only ever widen when grown); otherwise they are built when needed.
         std::size_t fresh = 0;
         for (const auto &range : tracedSegments_) fresh += range.second;
-        if (old_ && old_->fansBuilt && 4 * fresh <= record->segments.size()) {
+        if (old_ && old_->fansBuilt && 4 * fresh <= live) {
             record->groupFans = std::move(old_->groupFans);  // old_ is replaced below
-            GrowRecordFans(*record, tracedSegments_, tracedGroups_);
+            GrowRecordFans(*record, nextSegments_.data(), nextFanOf_.data(), tracedSegments_, tracedGroups_);
         }
         for (const StoredSample &s : record->samples) {
             record->hasEverything |= s.segmentCount == StoredSample::kEverything;
@@ -427,32 +458,39 @@ void BlockTracer::End() {
     endedActive_ = true;
 }
 
-void BlockTracer::GatherSegments(BlockRecord &record) {
-    std::size_t total = 0;
-    for (const StoredSample &s : record.samples)
-        if (s.segmentCount != StoredSample::kEverything) total += s.segmentCount;
-    record.segments.reserve(total);
-    record.fanOf.reserve(total);
+std::size_t BlockTracer::GatherSegments(BlockRecord &record) {
+    std::size_t total = 0, live = 0;
+    packedSizes_.assign(record.samples.size(), 0);
+    for (std::size_t i = 0; i < record.samples.size(); ++i) {
+        const StoredSample &s = record.samples[i];
+        if (s.segmentCount == StoredSample::kEverything) continue;
+        const BlockRecord &from = keptFromOld_[i] ? *old_ : next_;
+        packedSizes_[i] = PackedSize(from.packed.data() + s.firstByte, s.segmentCount);
+        total += packedSizes_[i];
+        live += s.segmentCount;
+    }
+    record.packed.reserve(total);
     tracedSegments_.clear();
     tracedGroups_.clear();
     for (std::size_t i = 0; i < record.samples.size(); ++i) {
         StoredSample &s = record.samples[i];
         if (s.segmentCount == StoredSample::kEverything) continue;
-        const std::size_t at = record.segments.size();
+        const std::size_t at = record.packed.size();
         // Reused segments keep their fan numbers: the new record starts from the old apexes,
         // and a record is reused from only once its fans are built (its numbers valid).
         const bool kept = keptFromOld_[i] != 0;
-        const Segment *first = (kept ? old_->segments.data() : next_.segments.data()) + s.firstSegment;
-        const std::uint8_t *fans = (kept ? old_->fanOf.data() : nextFanOf_.data()) + s.firstSegment;
-        record.segments.insert(record.segments.end(), first, first + s.segmentCount);
-        record.unitMask |= UnitMaskOf(first, s.segmentCount);
-        record.fanOf.insert(record.fanOf.end(), fans, fans + s.segmentCount);
-        if (!kept) {
-            tracedSegments_.emplace_back(at, s.segmentCount);
+        const std::uint8_t *first = (kept ? *old_ : next_).packed.data() + s.firstByte;
+        record.packed.insert(record.packed.end(), first, first + packedSizes_[i]);
+        if (kept) {
+            record.unitMask |= PackedUnitMask(first, s.segmentCount);
+        } else {
+            record.unitMask |= UnitMaskOf(nextSegments_.data() + nextFirstSegment_[i], s.segmentCount);
+            tracedSegments_.emplace_back(nextFirstSegment_[i], s.segmentCount);
             tracedGroups_.push_back(s.group);
         }
-        s.firstSegment = std::uint32_t(at);
+        s.firstByte = std::uint32_t(at);
     }
+    return live;
 }
 
 bool BlockTracer::UpdateInPlace() {
@@ -460,51 +498,44 @@ bool BlockTracer::UpdateInPlace() {
     if (!sameOrder_ || next_.samples.size() != r.samples.size() || !r.fansBuilt) return false;
     std::size_t fresh = 0;
     bool everythingReplaced = false, orderSensitiveReplaced = false;
-    tracedIndices_.clear();
+    tracedSegments_.clear();
+    tracedGroups_.clear();
     for (std::size_t i = 0; i < next_.samples.size(); ++i) {
         if (keptFromOld_[i]) continue;
         const StoredSample &traced = next_.samples[i];
         StoredSample &stored = r.samples[i];
         const bool storedHasSegments = stored.segmentCount != StoredSample::kEverything;
+        const std::size_t oldBytes = storedHasSegments ? PackedSize(r.packed.data() + stored.firstByte, stored.segmentCount) : 0;
         everythingReplaced |= !storedHasSegments;
         orderSensitiveReplaced |= stored.orderSensitive && !traced.orderSensitive;
         r.hasOrderSensitive |= traced.orderSensitive;
         if (traced.segmentCount == StoredSample::kEverything) {
-            if (storedHasSegments) r.deadSegments += stored.segmentCount;
+            r.deadBytes += oldBytes;
             stored = traced;
             r.hasEverything = true;
             continue;
         }
-        tracedIndices_.push_back(std::uint32_t(i));
-        std::size_t at = stored.firstSegment;
-        if (!storedHasSegments || stored.segmentCount != traced.segmentCount) {
-            if (storedHasSegments) r.deadSegments += stored.segmentCount;
-            at = r.segments.size();
+        const std::size_t newBytes = PackedSize(next_.packed.data() + traced.firstByte, traced.segmentCount);
+        std::size_t at = stored.firstByte;
+        if (storedHasSegments && newBytes <= oldBytes) {
+            r.deadBytes += oldBytes - newBytes;
+        } else {
+            r.deadBytes += oldBytes;
+            at = r.packed.size();
             // An eighth more room, not double: a record is kept for the whole run.
-            const std::size_t need = at + traced.segmentCount;
-            if (need > r.segments.capacity()) {
-                r.segments.reserve(need + need / 8);
-                r.fanOf.reserve(need + need / 8);
-            }
-            r.segments.resize(need);
-            r.fanOf.resize(need);
+            const std::size_t need = at + newBytes;
+            if (need > r.packed.capacity()) r.packed.reserve(need + need / 8);
+            r.packed.resize(need);
         }
-        std::copy_n(next_.segments.data() + traced.firstSegment, traced.segmentCount, r.segments.data() + at);
-        r.unitMask |= UnitMaskOf(next_.segments.data() + traced.firstSegment, traced.segmentCount);
-        std::copy_n(nextFanOf_.data() + traced.firstSegment, traced.segmentCount, r.fanOf.data() + at);
+        std::copy_n(next_.packed.data() + traced.firstByte, newBytes, r.packed.data() + at);
+        r.unitMask |= UnitMaskOf(nextSegments_.data() + nextFirstSegment_[i], traced.segmentCount);
         stored = traced;
-        stored.firstSegment = std::uint32_t(at);
+        stored.firstByte = std::uint32_t(at);
         fresh += traced.segmentCount;
+        tracedSegments_.emplace_back(nextFirstSegment_[i], traced.segmentCount);
+        tracedGroups_.push_back(traced.group);
     }
-    if (4 * r.deadSegments > r.segments.size()) CompactSegments(r);
-    // The traced samples' segments, in the record's numbering (after any compaction).
-    tracedSegments_.clear();
-    tracedGroups_.clear();
-    for (std::uint32_t i : tracedIndices_) {
-        const StoredSample &s = r.samples[i];
-        tracedSegments_.emplace_back(s.firstSegment, s.segmentCount);
-        tracedGroups_.push_back(s.group);
-    }
+    if (4 * r.deadBytes > r.packed.size()) CompactSegments(r);
     // A sample that depended on everything was traced again: is there another one left?
     if (everythingReplaced) {
         r.hasEverything = false;
@@ -517,8 +548,11 @@ bool BlockTracer::UpdateInPlace() {
     std::copy(next_.pixels.begin(), next_.pixels.end(), r.pixels.begin());
     r.apexes = next_.apexes;
     // Grow the cones by what was traced anew, unless much of the block is new (as End).
-    if (4 * fresh <= r.segments.size() - r.deadSegments) {
-        GrowRecordFans(r, tracedSegments_, tracedGroups_);
+    std::size_t live = 0;
+    for (const StoredSample &s : r.samples)
+        if (s.segmentCount != StoredSample::kEverything) live += s.segmentCount;
+    if (4 * fresh <= live) {
+        GrowRecordFans(r, nextSegments_.data(), nextFanOf_.data(), tracedSegments_, tracedGroups_);
     } else {
         r.fans = BlockFans();
         r.groupFans.clear();
@@ -528,22 +562,17 @@ bool BlockTracer::UpdateInPlace() {
 }
 
 void BlockTracer::CompactSegments(BlockRecord &record) {
-    std::vector<Segment> segments;
-    std::vector<std::uint8_t> fanOf;
-    segments.reserve(record.segments.size() - record.deadSegments);
-    fanOf.reserve(segments.capacity());
+    std::vector<std::uint8_t> packed;
+    packed.reserve(record.packed.size() - record.deadBytes);
     for (StoredSample &s : record.samples) {
         if (s.segmentCount == StoredSample::kEverything) continue;
-        const std::size_t at = segments.size();
-        segments.insert(segments.end(), record.segments.begin() + s.firstSegment,
-                        record.segments.begin() + s.firstSegment + s.segmentCount);
-        fanOf.insert(fanOf.end(), record.fanOf.begin() + s.firstSegment,
-                     record.fanOf.begin() + s.firstSegment + s.segmentCount);
-        s.firstSegment = std::uint32_t(at);
+        const std::size_t at = packed.size();
+        const std::uint8_t *first = record.packed.data() + s.firstByte;
+        packed.insert(packed.end(), first, first + PackedSize(first, s.segmentCount));
+        s.firstByte = std::uint32_t(at);
     }
-    record.segments.swap(segments);
-    record.fanOf.swap(fanOf);
-    record.deadSegments = 0;
+    record.packed.swap(packed);
+    record.deadBytes = 0;
 }
 
 bool BlockTracer::ChangedRect(int &left, int &top, int &right, int &bottom) const {

@@ -575,8 +575,8 @@ namespace povrayfc {
 namespace {
 
 // A block replayed with its samples in the same order is updated in place: the record is
-// the same object, a traced sample's segments overwrite its old ones when they are as many
-// and go to the end otherwise, the record is compacted once a quarter is dead, and the
+// the same object, a traced sample's packed segments overwrite its old ones when they take
+// no more bytes and go to the end otherwise, the record is compacted once a quarter is dead, and the
 // updated samples are still found by later changes.
 TEST_F(FrameCoherenceRun, ReplayedBlockInTheSameOrderIsUpdatedInPlace) {
     FrameCoherence &fc = FrameCoherence::Get();
@@ -619,30 +619,33 @@ TEST_F(FrameCoherenceRun, ReplayedBlockInTheSameOrderIsUpdatedInPlace) {
         return traced;
     };
     auto record = [&] { return fc.Plan().store->Find(0); };
-    // Every sample's segments lie inside the record, none shared, and the dead ones are
-    // counted: live + dead = all, and at most a quarter dead.
+    // Every sample's packed segments lie inside the record, no byte shared, and the dead
+    // bytes are counted: live + dead = all, and at most a quarter dead.
     auto consistent = [&](const BlockRecord &r) {
         std::size_t live = 0;
-        std::vector<int> owner(r.segments.size(), 0);
+        std::vector<int> owner(r.packed.size(), 0);
         for (const StoredSample &smp : r.samples) {
             if (smp.segmentCount == StoredSample::kEverything) continue;
-            if (std::size_t(smp.firstSegment) + smp.segmentCount > r.segments.size()) return false;
-            for (std::uint32_t k = 0; k < smp.segmentCount; ++k)
-                if (owner[smp.firstSegment + k]++) return false;
-            live += smp.segmentCount;
+            if (smp.firstByte > r.packed.size()) return false;
+            const std::size_t size = PackedSize(r.packed.data() + smp.firstByte, smp.segmentCount);
+            if (std::size_t(smp.firstByte) + size > r.packed.size()) return false;
+            for (std::size_t k = 0; k < size; ++k)
+                if (owner[smp.firstByte + k]++) return false;
+            live += size;
         }
-        return r.fanOf.size() == r.segments.size() && live + r.deadSegments == r.segments.size() &&
-               4 * r.deadSegments <= r.segments.size();
+        return live + r.deadBytes == r.packed.size() && 4 * r.deadBytes <= r.packed.size();
     };
 
     ASSERT_EQ(frame(1, true, false, 1), n);
     const BlockRecord *first = record();
     ASSERT_NE(first, nullptr);
     // The box moves off sample 0's ray: it alone is traced, in place, its one segment
-    // overwritten by one.
+    // overwritten by one (which, ending on nothing now, takes the 2 bytes of a unit less).
+    const std::uint32_t at = first->samples[0].firstByte;
     EXPECT_EQ(frame(2, false, false, 1), 1);
     EXPECT_EQ(record(), first);
-    EXPECT_EQ(record()->deadSegments, 0u);
+    EXPECT_EQ(record()->samples[0].firstByte, at);
+    EXPECT_EQ(record()->deadBytes, 2u);
     EXPECT_TRUE(consistent(*record()));
     // Back onto the ray, now recorded as three segments: found dirty, traced, appended.
     EXPECT_EQ(frame(3, true, false, 3), 1);
@@ -660,7 +663,7 @@ TEST_F(FrameCoherenceRun, ReplayedBlockInTheSameOrderIsUpdatedInPlace) {
     EXPECT_EQ(frame(40, false, true, 1), 1);
     EXPECT_NE(record(), first);
     EXPECT_TRUE(consistent(*record()));
-    EXPECT_EQ(record()->deadSegments, 0u);
+    EXPECT_EQ(record()->deadBytes, 0u);
 }
 
 }  // namespace

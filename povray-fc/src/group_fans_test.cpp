@@ -93,9 +93,11 @@ BlockRecord RecordBlock(const Scene &scene, int left, int top, std::mt19937_64 &
     record.right = left + 31;
     record.bottom = top + 31;
     SampleRecorder recorder;
+    std::vector<Segment> segments;
+    std::vector<std::uint8_t> fanOf;
     for (int y = top; y <= record.bottom; ++y)
         for (int x = left; x <= record.right; ++x) {
-            recorder.Begin(record.segments, record.fanOf, record.apexes, nullptr, 0);
+            recorder.Begin(segments, fanOf, record.apexes, nullptr, 0, &record.packed);
             StartRecordingRays(recorder);
             TraceSample(scene, x, y, rng);
             StopRecordingRays();
@@ -103,7 +105,7 @@ BlockRecord RecordBlock(const Scene &scene, int left, int top, std::mt19937_64 &
             s.x = x;
             s.y = y;
             s.group = std::uint32_t(record.GroupOf(x, y));
-            s.firstSegment = std::uint32_t(recorder.First());
+            s.firstByte = std::uint32_t(recorder.FirstByte());
             s.segmentCount = std::uint32_t(recorder.Count());
             record.samples.push_back(s);
         }
@@ -137,13 +139,15 @@ void CheckGroups(const BlockRecord &record, const ChangeIndex &changes, Counts &
         const BlockHulls group = FindGroupHulls(record.groupFans[g], changes, block);
         counts.samplesInReachedBlocks += block.Any();
         counts.samplesInReachedGroups += group.Any();
-        for (std::uint32_t k = 0; k < s.segmentCount; ++k) {
-            const std::size_t i = s.firstSegment + k;
+        std::vector<Segment> segments;
+        std::vector<std::uint8_t> fanOf;
+        ASSERT_TRUE(record.Unpack(s, segments, fanOf));
+        for (std::uint32_t i = 0; i < s.segmentCount; ++i) {
             bool meets = false;
-            for (const Hull &h : changes.Hulls()) meets |= MayMeet(record.segments[i], h);
+            for (const Hull &h : changes.Hulls()) meets |= MayMeet(segments[i], h);
             if (!meets) continue;
             ++counts.checkedSegments;
-            ASSERT_TRUE(group.SegmentMayMeet(record.segments[i], record.fanOf[i], changes))
+            ASSERT_TRUE(group.SegmentMayMeet(segments[i], fanOf[i], changes))
                 << "block " << record.left << "," << record.top << " sample " << s.x << "," << s.y << " segment " << i;
         }
     }
@@ -175,25 +179,28 @@ TEST(GroupFans, GrownGroupsHoldTheSamplesTracedAnew) {
         const int left = 32 * int(rng() % 10), top = 32 * int(rng() % 7);
         BlockRecord record = RecordBlock(scene, left, top, rng);
         // Some samples traced anew, as a replayed block traces its dirty samples, after
-        // the ball moved: their rays are appended and the samples point at them.
+        // the ball moved: their rays are packed onto the record's end and the samples point at
+        // them.
         Scene moved;
         moved.ball = Vec3{-4.0, 2.5, -6.0};
         moved.ballRadius = 3.0;
         std::vector<std::pair<std::size_t, std::size_t>> added;
         std::vector<std::uint32_t> addedGroup;
         SampleRecorder recorder;
+        std::vector<Segment> traced;
+        std::vector<std::uint8_t> tracedFans;
         for (StoredSample &s : record.samples) {
             if (rng() % 4) continue;
-            recorder.Begin(record.segments, record.fanOf, record.apexes, nullptr, 0);
+            recorder.Begin(traced, tracedFans, record.apexes, nullptr, 0, &record.packed);
             StartRecordingRays(recorder);
             TraceSample(moved, s.x, s.y, rng);
             StopRecordingRays();
-            s.firstSegment = std::uint32_t(recorder.First());
+            s.firstByte = std::uint32_t(recorder.FirstByte());
             s.segmentCount = std::uint32_t(recorder.Count());
             added.emplace_back(recorder.First(), recorder.Count());
             addedGroup.push_back(s.group);
         }
-        GrowRecordFans(record, added, addedGroup);
+        GrowRecordFans(record, traced.data(), tracedFans.data(), added, addedGroup);
         for (int k = 0; k < 10; ++k) {
             CheckGroups(record, ChangeIndex(SomeHulls(rng)), counts);
             if (HasFatalFailure()) return;

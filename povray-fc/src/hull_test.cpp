@@ -76,6 +76,10 @@ TEST(Segment, RejectsWhatItCannotStoreConservatively) {
     Segment s;
     // Invariant: rays whose float copy could drift by more than the margin are refused.
     EXPECT_FALSE(MakeSegment(nanO, d, 1.0, s));
+    // In any component (std::max keeps its first argument against a NaN second).
+    const double nanLastO[3] = {1, 2, kNaN}, nanLastD[3] = {1, 0, kNaN};
+    EXPECT_FALSE(MakeSegment(nanLastO, d, 1.0, s));
+    EXPECT_FALSE(MakeSegment(o, nanLastD, 1.0, s));
     EXPECT_FALSE(MakeSegment(o, infD, 1.0, s));
     EXPECT_FALSE(MakeSegment(o, zero, 1.0, s));
     EXPECT_FALSE(MakeSegment(o, tiny, 1.0, s));

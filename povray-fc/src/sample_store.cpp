@@ -50,7 +50,9 @@ std::size_t SampleStore::SampleCount() const {
 std::size_t SampleStore::SegmentCount() const {
     std::size_t n = 0;
     for (const auto &b : blocks_)
-        if (b) n += b->segments.size() - b->deadSegments;
+        if (b)
+            for (const StoredSample &smp : b->samples)
+                if (smp.segmentCount != StoredSample::kEverything) n += smp.segmentCount;
     return n;
 }
 

@@ -72,16 +72,16 @@ class BlockTracer {
     bool FindOld(double x, double y, std::uint32_t &index);
     void IndexOldSamples();
     void MarkTraced(double x, double y);
-    // The new record's segments and fan numbers in its samples' order, each copied once:
-    // a reused sample's from old_, a traced one's from next_; fills tracedSegments_ and
-    // tracedGroups_ in the record's numbering.
-    void GatherSegments(BlockRecord &record);
+    // The new record's packed segments in its samples' order, each copied once: a reused
+    // sample's from old_, a traced one's from next_; fills tracedSegments_ and
+    // tracedGroups_. Returns how many segments the record holds.
+    std::size_t GatherSegments(BlockRecord &record);
     // When the block was replayed with old_'s samples in old_'s order: writes the traced
     // samples, their segments and the pixels into old_ itself (fills tracedSegments_ and
-    // tracedGroups_ in its numbering) and returns true. A replayed block traces a few of
+    // tracedGroups_) and returns true. A replayed block traces a few of
     // its samples (on Newton 5%); copying the whole record for them was most of End.
     bool UpdateInPlace();
-    // Rewrites `record`'s live segments in its samples' order, dropping the dead ones.
+    // Rewrites `record`'s live packed segments in its samples' order, dropping the dead bytes.
     static void CompactSegments(BlockRecord &record);
 
     const FramePlan *plan_;
@@ -98,12 +98,16 @@ class BlockTracer {
     bool oldIndexed_ = false;                // oldIndex_ holds old_'s samples
     std::uint32_t nextOld_ = 0;              // the old sample after the last one found
     bool sameOrder_ = false;                 // every sample so far is old_'s at its position
-    BlockRecord next_;                       // the record being built for this frame
-    std::vector<std::uint8_t> nextFanOf_;    // per segment of next_: its fan
+    BlockRecord next_;                       // the record being built for this frame (packed segments)
+    // The segments traced into next_, as unpacking gives them, and their fans: the cones
+    // grow by these.
+    std::vector<Segment> nextSegments_;
+    std::vector<std::uint8_t> nextFanOf_;
+    std::vector<std::uint32_t> nextFirstSegment_;  // per sample of next_: its first in nextSegments_ (traced ones)
     std::vector<std::uint8_t> keptFromOld_;  // per sample of next_: reused (its segments are old_'s)
-    std::vector<std::pair<std::size_t, std::size_t>> tracedSegments_;  // (first, count) per traced sample, in the new record
+    std::vector<std::size_t> packedSizes_;   // GatherSegments: per sample, its packed bytes
+    std::vector<std::pair<std::size_t, std::size_t>> tracedSegments_;  // (first, count) per traced sample, in nextSegments_
     std::vector<std::uint32_t> tracedGroups_;  // per traced sample: its group (BlockRecord::GroupOf)
-    std::vector<std::uint32_t> tracedIndices_; // UpdateInPlace: the traced samples with segments
     std::vector<BlockHulls> groupReach_;       // per group of old_: the changes it may reach
     std::vector<std::uint8_t> groupReaches_;   // per group of old_: groupReach_[g].Any()
     std::vector<std::uint32_t> groupClasses_;  // per group of old_: groupReach_[g].ReachedClasses()

@@ -25,11 +25,13 @@ namespace povrayfc {
 void BuildRecordFans(BlockRecord &record);
 
 // The same for a replayed block, cheaply: `record.groupFans` hold its groups' cones from
-// before, `added` the (first segment, count) of each sample traced anew and `addedGroup`
-// its group. The samples kept from before keep their segments inside the old cones; only
-// the groups that gained segments grow (a replayed block traces a few of its samples) and
-// only the added segments' fan numbers are validated.
-void GrowRecordFans(BlockRecord &record, const std::vector<std::pair<std::size_t, std::size_t>> &added,
+// before; `segments` and `fanOf` the segments of the samples traced anew, as unpacking
+// gives them (the recorder's), `added` each such sample's (first, count) in them and
+// `addedGroup` its group. The samples kept from before keep their segments inside the old
+// cones; only the groups that gained segments grow (a replayed block traces a few of its
+// samples) and only the added segments' fan numbers are validated.
+void GrowRecordFans(BlockRecord &record, const Segment *segments, std::uint8_t *fanOf,
+                    const std::vector<std::pair<std::size_t, std::size_t>> &added,
                     const std::vector<std::uint32_t> &addedGroup);
 
 }  // namespace povrayfc

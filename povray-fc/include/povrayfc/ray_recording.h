@@ -4,8 +4,8 @@
 // anti-aliasing, reflected, refracted, continued and shadow rays). When the thread is
 // not recording (fc off, or a frame fc renders without recording) the call is one
 // thread-local load and a branch, so the hooks stay in the hot path unconditionally.
-// When it is, the segment is appended to the sample's list as 32 bytes, with the id of the
-// unit it ended on: nothing is walked or looked up while tracing (a voxel walk per ray
+// When it is, the segment is appended to the sample's list (and packed, segment_packing.h),
+// with the id of the unit it ended on: nothing is walked or looked up while tracing (a voxel walk per ray
 // used to cost three times the ray itself); the next frame tests the stored segments
 // against what changed.
 #ifndef POVRAYFC_RAY_RECORDING_H
@@ -16,69 +16,12 @@
 #include <cstdint>
 #include <vector>
 
+#include "povrayfc/fan_apexes.h"
 #include "povrayfc/scene_signature.h"
 #include "povrayfc/segment.h"
+#include "povrayfc/segment_packing.h"
 
 namespace povrayfc {
-
-// The points a render block's segments are bundled by (see segment_fans.h): the camera
-// position its camera rays start from, and the light positions its shadow rays aim at.
-// Filled as rays are recorded; index = the bundle's fan number.
-//
-// Each light has two bundles: the shadow rays from the surfaces the block's camera rays
-// hit, and the "deep" ones, from where its reflected and refracted rays hit. The first
-// come from neighbouring points and make a narrow cone; the second come from anywhere a
-// curved mirror looks, and their cone spans tens of degrees. In one bundle, that wide
-// cone reached every change near the block and every shadow ray of it was tested: on
-// Newton's cradle nine in ten of those tests found nothing.
-struct FanApexes {
-    static constexpr int kMax = 16;  // the camera and seven lights, each twice
-    double point[kMax][3];
-    bool isOrigin[kMax];
-    bool isDeep[kMax];
-    int count = 0;
-
-    void Clear() { count = 0; }
-    // The fan of a segment starting at `origin`: the block's first recorded origin (its
-    // first camera ray's) is fan 0; other origins are loose.
-    std::uint8_t OriginFan(const double origin[3]) {
-        if (count == 0) {
-            Set(0, origin, true);
-            count = 1;
-        }
-        return (isOrigin[0] && Same(point[0], origin)) ? 0 : kLoose;
-    }
-    // The fan of a shadow segment aimed at `aim` (the light point it tests, as origin +
-    // depth * direction: the same light gives points a few ulps apart, hence the
-    // tolerance; how far each segment really strays from its apex is measured when the
-    // cones are built).
-    // `deep`: the ray leaves a point a reflected or refracted ray hit.
-    std::uint8_t AimFan(const double aim[3], bool deep = false) {
-        for (int i = 0; i < count; ++i)
-            if (!isOrigin[i] && isDeep[i] == deep && Near(point[i], aim)) return std::uint8_t(i);
-        if (count == kMax) return kLoose;
-        Set(count, aim, false);
-        isDeep[count] = deep;
-        return std::uint8_t(count++);
-    }
-
-    static constexpr std::uint8_t kLoose = 0xff;
-
-  private:
-    static bool Same(const double *a, const double *b) { return a[0] == b[0] && a[1] == b[1] && a[2] == b[2]; }
-    static bool Near(const double *a, const double *b) {
-        const double tolerance = 1e-6 * (1.0 + std::fabs(a[0]) + std::fabs(a[1]) + std::fabs(a[2]));
-        return std::fabs(a[0] - b[0]) <= tolerance && std::fabs(a[1] - b[1]) <= tolerance &&
-               std::fabs(a[2] - b[2]) <= tolerance;
-    }
-    void Set(int i, const double *p, bool origin) {
-        point[i][0] = p[0];
-        point[i][1] = p[1];
-        point[i][2] = p[2];
-        isOrigin[i] = origin;
-        isDeep[i] = false;
-    }
-};
 
 // Collects the segments of one camera sample, appending to a render block's lists (so a
 // finished sample needs no copy): each segment and its fan number.
@@ -87,13 +30,18 @@ class SampleRecorder {
     // Starts a sample whose segments go to the end of `segments` (and their fans to
     // `fanOf`, against the block's `apexes`). `unitIds[i]` is the id of the frame's unit i
     // (unit_ids.h), for `unitCount` units.
+    // With `packed`, each segment is also packed onto its end (segment_packing.h), and
+    // `segments` gets the segment as it will be unpacked.
     void Begin(std::vector<Segment> &segments, std::vector<std::uint8_t> &fanOf, FanApexes &apexes,
-               const std::uint32_t *unitIds, std::size_t unitCount) {
+               const std::uint32_t *unitIds, std::size_t unitCount, std::vector<std::uint8_t> *packed = nullptr) {
         segments_ = &segments;
         fanOf_ = &fanOf;
         apexes_ = &apexes;
         unitIds_ = unitIds;
         unitCount_ = unitCount;
+        packed_ = packed;
+        firstByte_ = packed ? packed->size() : 0;
+        byteStart_.clear();
         first_ = segments.size();
         everything_ = false;
         deep_ = false;
@@ -102,15 +50,14 @@ class SampleRecorder {
     // A ray that ended on the frame's unit `unit` (the index the parser wrote into what it
     // hit, or kUnitNothing).
     void Add(const double origin[3], const double direction[3], double tmax, std::uint32_t unit) {
-        Segment s;
-        if (!MakeSegment(origin, direction, tmax, s)) {
-            everything_ = true;  // a ray that cannot be placed: any change must re-trace it
+        // A ray that cannot be placed: any change must re-trace it (and it must not become
+        // the block's camera apex).
+        if (!(std::isfinite(origin[0]) && std::isfinite(origin[1]) && std::isfinite(origin[2]))) {
+            everything_ = true;
             return;
         }
-        s.unit = UnitId(unit);
-        segments_->push_back(s);
         const std::uint8_t fan = apexes_->OriginFan(origin);
-        fanOf_->push_back(fan);
+        if (!Store(origin, direction, tmax, UnitId(unit), fan)) return;
         // POV-Ray records a ray when it found what the ray hits, and lights a point
         // (its shadow tests) before it follows the reflected and refracted rays: shadow
         // rays after a ray that did not start at the camera leave the points such rays
@@ -122,21 +69,25 @@ class SampleRecorder {
     // `opaqueBlocker`: an opaque surface of `unit` ended the test (kOpaqueBlocker).
     void AddAimed(const double origin[3], const double direction[3], double tmax, const double aim[3],
                   std::uint32_t unit, bool opaqueBlocker = false) {
-        Segment s;
-        if (!MakeSegment(origin, direction, tmax, s)) {
+        Segment probe;
+        if (!MakeSegment(origin, direction, tmax, probe)) {  // before its aim joins a bundle
             everything_ = true;
             return;
         }
-        s.unit = UnitId(unit);
-        if (opaqueBlocker && s.unit != Segment::kNoUnit) s.unit |= Segment::kOpaqueBlocker;
-        segments_->push_back(s);
-        fanOf_->push_back(apexes_->AimFan(aim, deep_));
+        std::uint32_t id = UnitId(unit);
+        if (opaqueBlocker && id != Segment::kNoUnit) id |= Segment::kOpaqueBlocker;
+        Store(origin, direction, tmax, id, apexes_->AimFan(aim, deep_));
     }
     // Drops the segments recorded after the sample's first `count` (a shadow test's pieces
     // that its opaque blocker made moot).
     void KeepFirst(std::size_t count) {
+        if (count >= Count()) return;
         segments_->resize(first_ + count);
         fanOf_->resize(first_ + count);
+        if (packed_) {
+            packed_->resize(byteStart_[count]);
+            byteStart_.resize(count);
+        }
     }
     void MarkEverything() { everything_ = true; }
     // One of the sample's searches for a nearest intersection ended in a tie that the order
@@ -151,9 +102,36 @@ class SampleRecorder {
     void Discard() {
         segments_->resize(first_);
         fanOf_->resize(first_);
+        if (packed_) packed_->resize(firstByte_);
+        byteStart_.clear();
     }
+    // Where the sample's packed segments begin (with `packed`).
+    std::size_t FirstByte() const { return firstByte_; }
 
   private:
+    // Appends the segment (and packs it, with `packed`); false when the ray cannot be
+    // stored, which makes the sample depend on everything.
+    bool Store(const double origin[3], const double direction[3], double tmax, std::uint32_t unit,
+               std::uint8_t fan) {
+        Segment s;
+        bool stored;
+        if (packed_) {
+            const std::size_t at = packed_->size();
+            stored = PackSegment(origin, direction, tmax, unit, fan, segments_->data() + first_, Count(), *apexes_,
+                                 *packed_, s);
+            if (stored) byteStart_.push_back(std::uint32_t(at));
+        } else {
+            stored = MakeSegment(origin, direction, tmax, s);
+            s.unit = unit;
+        }
+        if (!stored) {
+            everything_ = true;
+            return false;
+        }
+        segments_->push_back(s);
+        fanOf_->push_back(fan);
+        return true;
+    }
     // The id a segment that ended on the frame's unit `unit` records. An object the parser
     // gave no unit makes the sample depend on everything.
     std::uint32_t UnitId(std::uint32_t unit) {
@@ -168,6 +146,9 @@ class SampleRecorder {
     FanApexes *apexes_ = nullptr;
     const std::uint32_t *unitIds_ = nullptr;
     std::size_t unitCount_ = 0;
+    std::vector<std::uint8_t> *packed_ = nullptr;
+    std::vector<std::uint32_t> byteStart_;  // per segment of the sample: where it is packed
+    std::size_t firstByte_ = 0;
     std::size_t first_ = 0;
     bool everything_ = false;
     bool deep_ = false;  // a reflected or refracted ray was recorded in this sample

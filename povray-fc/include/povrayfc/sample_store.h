@@ -11,10 +11,10 @@
 //
 // Why blocks. POV-Ray hands each render block to one thread, so a block's record is
 // read and rebuilt by that thread alone, with no locks. A block replayed with the same
-// samples as before is updated in place (BlockTracer::End): a traced sample's segments
-// overwrite its old ones when they are as many, else go to the end of the record, the
-// old ones left dead; a record more than a quarter dead is compacted. Otherwise the record is
-// replaced whole.
+// samples as before is updated in place (BlockTracer::End): a traced sample's packed
+// segments overwrite its old ones when they take no more bytes, else go to the end of the
+// record, the old ones left dead; a record more than a quarter dead is compacted.
+// Otherwise the record is replaced whole.
 #ifndef POVRAYFC_SAMPLE_STORE_H
 #define POVRAYFC_SAMPLE_STORE_H
 
@@ -28,6 +28,7 @@
 
 #include "povrayfc/segment.h"
 #include "povrayfc/segment_fans.h"
+#include "povrayfc/segment_packing.h"
 
 namespace povrayfc {
 
@@ -40,7 +41,8 @@ struct StoredSample {
 
     double x = 0, y = 0;  // position in the image, as POV-Ray traced it: the sample's key
     float colour[5] = {0, 0, 0, 0, 0};  // red, green, blue, filter, transmit
-    std::uint32_t firstSegment = 0, segmentCount = 0;
+    // Where its segments are packed in BlockRecord::packed, and how many there are.
+    std::uint32_t firstByte = 0, segmentCount = 0;
     // BlockRecord::GroupOf(x, y), worked out once when the sample is recorded: the test of
     // a block's samples against a frame's changes reads it for every sample. It fills what
     // was padding.
@@ -67,13 +69,14 @@ struct BlockRecord {
     // which nothing at all changed may reuse it.
     bool opaque = false;
     std::vector<StoredSample> samples;
-    std::vector<Segment> segments;
-    // Segments (and their fanOf entries) no sample refers to any more: left by in-place
-    // updates until the record is compacted.
-    std::size_t deadSegments = 0;
+    // The samples' segments and their bundles (FanApexes numbers), packed
+    // (segment_packing.h): each sample's from its firstByte.
+    std::vector<std::uint8_t> packed;
+    // Bytes of `packed` no sample refers to any more: left by in-place updates until the
+    // record is compacted.
+    std::size_t deadBytes = 0;
     std::vector<float> pixels;  // 5 floats per pixel, row by row
     FanApexes apexes;           // the camera and light points the segments are bundled by
-    std::vector<std::uint8_t> fanOf;  // per segment: its bundle (FanApexes number) or kLoose
     // Cones around those bundles, for a quick "nothing near", built when a frame first
     // tests the block (a block no change comes near, or a full frame, never pays).
     BlockFans fans;
@@ -107,9 +110,34 @@ struct BlockRecord {
     const float *Pixel(int x, int y) const {
         return &pixels[(std::size_t(y - top) * std::size_t(Width()) + std::size_t(x - left)) * 5];
     }
+    // Appends sample `s`'s segments to `segments` and their bundles to `fanOf` (and, when
+    // given, each one's offset in `packed` to `headers`). False when they cannot be read
+    // back (segment_packing.h): the sample must count as dirty.
+    bool Unpack(const StoredSample &s, std::vector<Segment> &segments, std::vector<std::uint8_t> &fanOf,
+                std::vector<std::uint32_t> *headers = nullptr) const {
+        const std::size_t before = headers ? headers->size() : 0;
+        const bool ok = UnpackSample(packed.data() + s.firstByte, s.segmentCount, apexes, segments, fanOf, headers);
+        if (headers)
+            for (std::size_t i = before; i < headers->size(); ++i) (*headers)[i] += s.firstByte;
+        return ok;
+    }
+    // As Unpack; a sample whose segments cannot be read back is made to depend on
+    // everything (its bytes left dead), and gives none.
+    bool UnpackOrForget(StoredSample &s, std::vector<Segment> &segments, std::vector<std::uint8_t> &fanOf,
+                        std::vector<std::uint32_t> *headers = nullptr) {
+        const std::size_t n = segments.size(), f = fanOf.size(), h = headers ? headers->size() : 0;
+        if (Unpack(s, segments, fanOf, headers)) return true;
+        segments.resize(n);
+        fanOf.resize(f);
+        if (headers) headers->resize(h);
+        deadBytes += PackedSize(packed.data() + s.firstByte, s.segmentCount);
+        s.segmentCount = StoredSample::kEverything;
+        hasEverything = true;
+        return false;
+    }
     std::size_t MemoryBytes() const {
-        return sizeof(*this) + samples.capacity() * sizeof(StoredSample) + segments.capacity() * sizeof(Segment) +
-               pixels.capacity() * sizeof(float) + fanOf.capacity() + fans.MemoryBytes() + GroupFansMemoryBytes();
+        return sizeof(*this) + samples.capacity() * sizeof(StoredSample) + packed.capacity() +
+               pixels.capacity() * sizeof(float) + fans.MemoryBytes() + GroupFansMemoryBytes();
     }
     std::size_t GroupFansMemoryBytes() const {
         std::size_t bytes = groupFans.capacity() * sizeof(BlockFans);

@@ -44,9 +44,11 @@ inline bool MakeSegment(const double origin[3], const double direction[3], doubl
     const double d0 = std::fabs(direction[0]), d1 = std::fabs(direction[1]), d2 = std::fabs(direction[2]);
     const double largest = std::max(d0, std::max(d1, d2));
     const double o = std::max(std::fabs(origin[0]), std::max(std::fabs(origin[1]), std::fabs(origin[2])));
-    // NaN fails every comparison. A direction outside float's comfortable range would
-    // break the margin argument (SegmentMargin).
-    if (!(o <= 1e30 && largest <= 1e30 && largest >= 1e-20 && tmax >= 0.0)) return false;
+    // NaN fails every comparison, but std::max drops a NaN in its second argument: the
+    // sums carry any NaN. A direction outside float's comfortable range would break the
+    // margin argument (SegmentMargin).
+    const double any = origin[0] + origin[1] + origin[2] + direction[0] + direction[1] + direction[2];
+    if (!(o <= 1e30 && largest <= 1e30 && largest >= 1e-20 && tmax >= 0.0 && any == any)) return false;
     // Components under 1e-30 of the largest move the ray by less than the margin over any
     // distance that matters; flushing them avoids float denormals.
     const double flush = largest * 1e-30;

@@ -1,0 +1,106 @@
+// Segment packing: a sample's ray segments as the store keeps them, 4 to 35 bytes each
+// where a Segment and its bundle number take 33.
+//
+// Why. A deep glass scene records about 27 segments per camera sample, and at 33 bytes
+// they were nine tenths of the store. Most of a segment repeats what its sample already
+// holds: a shadow ray leaves the point a ray before it hit (or the point another shadow
+// ray left), towards a light the block's bundles know (FanApexes); a reflected ray leaves
+// where its parent ended; a shadow test's pieces share one direction; a camera ray starts
+// at the camera. The packed form says so in a flag and at most one byte instead of 12 or
+// 24, and a unit direction it cannot derive takes 6 bytes (octahedral, 24 bits a side).
+//
+// Why it stays exact. A derived field is not the float nearest the traced double value, so
+// the packer keeps one only when the value unpacking will give (computed by the very
+// functions the unpacker calls) lies within kPackTolerance of the traced value: origin and
+// direction in the max norm, relative to their largest component; and a derived length
+// only when it is not shorter than the traced one. Otherwise the field is written in full
+// as MakeSegment rounds it. SegmentMargin (hull.h) is four times what that error can move
+// the ray near a target; povray-fc/README.md "Conservative in floating point".
+//
+// Layout of one packed segment, in this order:
+//   fan (1 byte: the bundle number, FanApexes, or kLoose)
+//   flags (1 byte, below)
+//   reference (1 byte, origin modes kOriginSameAs and kOriginEndOf: how many segments
+//              back, 0 = the one just before)
+//   origin (12 bytes, 3 floats, kOriginExplicit)
+//   direction (12 bytes, 3 floats, kDirectionExplicit; 6 bytes, kDirectionOctahedral)
+//   length (4 bytes, a float, unless kLengthToApex)
+//   unit (2 bytes, kUnitShort; 4 bytes, kUnitLong; nothing, kUnitNone)
+// A sample's segments are packed one after the other; a reference never leaves the sample,
+// so each sample unpacks on its own.
+#ifndef POVRAYFC_SEGMENT_PACKING_H
+#define POVRAYFC_SEGMENT_PACKING_H
+
+#include <cstddef>
+#include <cstdint>
+#include <vector>
+
+#include "povrayfc/fan_apexes.h"
+#include "povrayfc/segment.h"
+
+namespace povrayfc {
+
+// How far a derived origin or direction may lie from the traced one, relative to its
+// largest component (a float's own rounding is 2^-24).
+constexpr double kPackTolerance = 0x1p-21;
+
+namespace packing {
+enum : std::uint8_t {
+    kOriginExplicit = 0,
+    kOriginSameAs = 1,   // the origin of an earlier segment of the sample
+    kOriginEndOf = 2,    // the end of an earlier segment (origin + length * direction)
+    kOriginApex = 3,     // the apex of its fan, an origin fan (the camera)
+    kOriginMask = 3,
+
+    kDirectionExplicit = 0 << 2,
+    kDirectionOctahedral = 1 << 2,  // a unit vector, 24 bits a side
+    kDirectionSame = 2 << 2,        // the previous segment's
+    kDirectionToApex = 3 << 2,      // from its origin towards its fan's apex (a light), unit
+    kDirectionMask = 3 << 2,
+
+    kLengthToApex = 1 << 4,  // from its origin to its fan's apex, rounded up
+
+    kUnitNone = 0 << 5,
+    kUnitShort = 1 << 5,  // 15 bits of id and the opaque-blocker bit
+    kUnitLong = 2 << 5,
+    kUnitMask = 3 << 5,
+};
+// How far back an origin may refer.
+constexpr std::size_t kMaxReference = 64;
+}  // namespace packing
+
+// Packs the ray origin + t * direction, t in [0, tmax], that ended on `unit` (a
+// Segment::unit value) in bundle `fan` of `apexes`, after the sample's `count` segments
+// before it (`earlier`, as unpacked), onto the end of `out`; `packed` is set to what
+// unpacking will give. Returns false, appending nothing, when the ray cannot be stored
+// conservatively (MakeSegment).
+bool PackSegment(const double origin[3], const double direction[3], double tmax, std::uint32_t unit,
+                 std::uint8_t fan, const Segment *earlier, std::size_t count, const FanApexes &apexes,
+                 std::vector<std::uint8_t> &out, Segment &packed);
+
+// Unpacks a sample's `count` segments packed at `bytes`, appending them to `segments` and
+// their fans to `fanOf` (a fan number without an apex in `apexes` becomes kLoose), and to
+// `headers`, when given, each one's offset from `bytes`. Returns false when the bytes refer
+// to what is not there (an apex `apexes` lacks): the sample must then count as dirty.
+bool UnpackSample(const std::uint8_t *bytes, std::uint32_t count, const FanApexes &apexes,
+                  std::vector<Segment> &segments, std::vector<std::uint8_t> &fanOf,
+                  std::vector<std::uint32_t> *headers = nullptr);
+
+// Reads the unit of the packed segment whose header is at `header` (Segment::kNoUnit when
+// none) and returns where the next one begins: walking a sample's units without unpacking.
+const std::uint8_t *NextPacked(const std::uint8_t *header, std::uint32_t &unit);
+
+// The bytes a sample's `count` packed segments take.
+std::size_t PackedSize(const std::uint8_t *bytes, std::uint32_t count);
+
+// The UnitMaskBit (sample_store.h) of every unit a sample's packed segments ended on.
+std::uint64_t PackedUnitMask(const std::uint8_t *bytes, std::uint32_t count);
+
+// Replaces the unit of the packed segment whose header is at `header` by `unit` (a
+// Segment::unit value, not kNoUnit). False, changing nothing, when it does not fit the
+// width the segment was packed with.
+bool RewritePackedUnit(std::uint8_t *header, std::uint32_t unit);
+
+}  // namespace povrayfc
+
+#endif

@@ -1,0 +1,229 @@
+// Tests for segment packing: what is read back is what the packer promised, within the
+// tolerance of the traced rays, and packed small.
+#include <cmath>
+#include <cstring>
+#include <random>
+#include <vector>
+
+#include <gtest/gtest.h>
+
+#include "povrayfc/fan_apexes.h"
+#include "povrayfc/sample_store.h"
+#include "povrayfc/segment_packing.h"
+
+using namespace povrayfc;
+
+namespace {
+
+struct Ray {
+    double origin[3], direction[3], tmax;
+    std::uint32_t unit;
+    std::uint8_t fan;
+};
+
+double MaxAbs(const double v[3]) { return std::max(std::fabs(v[0]), std::max(std::fabs(v[1]), std::fabs(v[2]))); }
+
+void Normalise(double v[3]) {
+    const double n = std::sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]);
+    for (int c = 0; c < 3; ++c) v[c] /= n;
+}
+
+// A sample's rays as POV-Ray traces them: a camera ray, shadow tests towards two lights
+// from its hit (one in pieces through a transparent object), a reflection from the hit
+// and a shadow test from where that lands; `scale` moves the whole scene far from 0.
+std::vector<Ray> SampleRays(std::mt19937_64 &rng, FanApexes &apexes, double scale) {
+    std::uniform_real_distribution<double> u(-1, 1), len(2, 30);
+    const double eye[3] = {scale + 1, scale - 2, scale - 20};
+    const double lights[2][3] = {{scale + 30, scale + 40, scale - 10}, {scale - 25, scale + 35, scale + 5}};
+    std::vector<Ray> rays;
+    Ray camera{{eye[0], eye[1], eye[2]}, {0.3 * u(rng), 0.3 * u(rng), 1}, len(rng), 7, 0};
+    Normalise(camera.direction);
+    camera.fan = apexes.OriginFan(camera.origin);
+    rays.push_back(camera);
+    double hit[3];
+    for (int c = 0; c < 3; ++c) hit[c] = camera.origin[c] + camera.tmax * camera.direction[c];
+    auto shadow = [&](const double from[3], int light, bool deep, bool pieces) {
+        double d[3] = {lights[light][0] - from[0], lights[light][1] - from[1], lights[light][2] - from[2]};
+        double depth = std::sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
+        Normalise(d);
+        const std::uint8_t fan = apexes.AimFan(lights[light], deep);
+        double o[3] = {from[0], from[1], from[2]};
+        if (pieces) {  // through a transparent object: the loop moves its origin on
+            const double passed = depth * 0.3;
+            rays.push_back(Ray{{o[0], o[1], o[2]}, {d[0], d[1], d[2]}, passed, 12, fan});
+            for (int c = 0; c < 3; ++c) o[c] += passed * d[c];
+            depth -= passed;
+        }
+        rays.push_back(Ray{{o[0], o[1], o[2]}, {d[0], d[1], d[2]}, depth, Segment::kNoUnit, fan});
+    };
+    shadow(hit, 0, false, false);
+    shadow(hit, 1, false, true);
+    Ray reflected{{hit[0], hit[1], hit[2]}, {u(rng), u(rng), u(rng)}, len(rng), 40000, 0};
+    Normalise(reflected.direction);
+    reflected.fan = apexes.OriginFan(reflected.origin);
+    rays.push_back(reflected);
+    double far[3];
+    for (int c = 0; c < 3; ++c) far[c] = reflected.origin[c] + reflected.tmax * reflected.direction[c];
+    shadow(far, 0, true, false);
+    // A ray into the sky, and one with a direction nobody normalised.
+    Ray sky{{far[0], far[1], far[2]}, {u(rng), 1, u(rng)}, 2e10, Segment::kNoUnit, 0};
+    Normalise(sky.direction);
+    sky.fan = apexes.OriginFan(sky.origin);
+    rays.push_back(sky);
+    Ray odd{{hit[0], hit[1], hit[2]}, {3 * u(rng), 2, u(rng)}, len(rng), 3 | Segment::kOpaqueBlocker, 0};
+    odd.fan = apexes.OriginFan(odd.origin);
+    rays.push_back(odd);
+    return rays;
+}
+
+// Invariant (the margin argument rests on it): an unpacked segment lies within
+// kPackTolerance of the traced ray, never shorter, with its unit.
+void ExpectHolds(const Segment &s, const Ray &r) {
+    const double to = kPackTolerance * MaxAbs(r.origin), td = kPackTolerance * MaxAbs(r.direction);
+    for (int c = 0; c < 3; ++c) {
+        EXPECT_LE(std::fabs(double(s.origin[c]) - r.origin[c]), to);
+        EXPECT_LE(std::fabs(double(s.direction[c]) - r.direction[c]), td);
+    }
+    EXPECT_GE(double(s.length), r.tmax);
+    EXPECT_EQ(s.unit, r.unit);
+}
+
+TEST(SegmentPacking, WhatIsReadBackIsWhatThePackerPromisedAndHoldsTheTracedRay) {
+    std::mt19937_64 rng(3);
+    for (double scale : {0.0, 1.0, 1000.0, 1e6}) {
+        FanApexes apexes;
+        std::vector<std::uint8_t> bytes;
+        std::vector<Segment> promised;
+        std::vector<std::uint32_t> firsts, counts;
+        std::vector<std::vector<Ray>> samples;
+        for (int i = 0; i < 300; ++i) {
+            const std::vector<Ray> rays = SampleRays(rng, apexes, scale);
+            firsts.push_back(std::uint32_t(bytes.size()));
+            std::vector<Segment> sample;
+            for (const Ray &r : rays) {
+                Segment s;
+                ASSERT_TRUE(PackSegment(r.origin, r.direction, r.tmax, r.unit, r.fan, sample.data(), sample.size(),
+                                        apexes, bytes, s));
+                sample.push_back(s);
+            }
+            promised.insert(promised.end(), sample.begin(), sample.end());
+            counts.push_back(std::uint32_t(rays.size()));
+            samples.push_back(rays);
+        }
+        std::size_t k = 0, total = 0;
+        for (std::size_t i = 0; i < samples.size(); ++i) {
+            std::vector<Segment> segments;
+            std::vector<std::uint8_t> fanOf;
+            ASSERT_TRUE(UnpackSample(bytes.data() + firsts[i], counts[i], apexes, segments, fanOf));
+            ASSERT_EQ(segments.size(), samples[i].size());
+            EXPECT_EQ(PackedSize(bytes.data() + firsts[i], counts[i]),
+                      (i + 1 < firsts.size() ? firsts[i + 1] : bytes.size()) - firsts[i]);
+            for (std::size_t j = 0; j < segments.size(); ++j, ++k) {
+                EXPECT_EQ(std::memcmp(&segments[j], &promised[k], sizeof(Segment)), 0) << "scale " << scale;
+                EXPECT_EQ(fanOf[j], samples[i][j].fan);
+                ExpectHolds(segments[j], samples[i][j]);
+                ++total;
+            }
+        }
+        // The point: a sample's rays mostly repeat one another (33 bytes each unpacked).
+        EXPECT_LT(double(bytes.size()) / double(total), 17.0) << "scale " << scale;
+    }
+}
+
+TEST(SegmentPacking, AnOriginOffByMoreThanTheToleranceIsWrittenInFull) {
+    FanApexes apexes;
+    std::vector<std::uint8_t> bytes;
+    const double o[3] = {10, 20, 30}, d[3] = {0, 0, 1};
+    Segment first;
+    ASSERT_TRUE(PackSegment(o, d, 5.0, Segment::kNoUnit, FanApexes::kLoose, nullptr, 0, apexes, bytes, first));
+    // Leaves (nearly) where the first ended: 35 by the floats, 4 tolerances off.
+    const double near[3] = {10, 20, 35.0 + 4 * kPackTolerance * 35.0}, up[3] = {0, 1, 0};
+    Segment second;
+    const std::size_t before = bytes.size();
+    ASSERT_TRUE(PackSegment(near, up, 1.0, Segment::kNoUnit, FanApexes::kLoose, &first, 1, apexes, bytes, second));
+    EXPECT_EQ(bytes[before + 1] & packing::kOriginMask, packing::kOriginExplicit);
+    EXPECT_EQ(second.origin[2], float(near[2]));
+    // Within the tolerance, it refers to the first.
+    const double close[3] = {10, 20, 35.0 + 0.25 * kPackTolerance * 35.0};
+    const std::size_t again = bytes.size();
+    ASSERT_TRUE(PackSegment(close, up, 1.0, Segment::kNoUnit, FanApexes::kLoose, &first, 1, apexes, bytes, second));
+    EXPECT_EQ(bytes[again + 1] & packing::kOriginMask, packing::kOriginEndOf);
+}
+
+TEST(SegmentPacking, ALengthToTheLightIsNeverShorterThanTraced) {
+    FanApexes apexes;
+    const double light[3] = {0, 100, 0};
+    const std::uint8_t fan = apexes.AimFan(light);
+    std::mt19937_64 rng(8);
+    std::uniform_real_distribution<double> u(-50, 50);
+    for (int i = 0; i < 2000; ++i) {
+        double o[3] = {u(rng), u(rng) / 10, u(rng)}, d[3] = {light[0] - o[0], light[1] - o[1], light[2] - o[2]};
+        const double depth = std::sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
+        Normalise(d);
+        std::vector<std::uint8_t> bytes;
+        Segment s;
+        // Sometimes the test stops a hair short of the light, sometimes a hair beyond.
+        const double tmax = depth * (1.0 + ((i % 3) - 1) * 1e-9);
+        ASSERT_TRUE(PackSegment(o, d, tmax, Segment::kNoUnit, fan, nullptr, 0, apexes, bytes, s));
+        EXPECT_GE(double(s.length), tmax);
+    }
+}
+
+TEST(SegmentPacking, UnitsAreReadAndRewrittenWithinTheirWidth) {
+    FanApexes apexes;
+    std::vector<std::uint8_t> bytes;
+    const double o[3] = {1, 2, 3}, d[3] = {1, 0, 0};
+    Segment a, b, c;
+    ASSERT_TRUE(PackSegment(o, d, 1.0, 5 | Segment::kOpaqueBlocker, FanApexes::kLoose, nullptr, 0, apexes, bytes, a));
+    const std::size_t second = bytes.size();
+    ASSERT_TRUE(PackSegment(o, d, 2.0, 70000, FanApexes::kLoose, &a, 1, apexes, bytes, b));
+    const std::size_t third = bytes.size();
+    ASSERT_TRUE(PackSegment(o, d, 3.0, Segment::kNoUnit, FanApexes::kLoose, &a, 2, apexes, bytes, c));
+    std::uint32_t unit;
+    const std::uint8_t *next = NextPacked(bytes.data(), unit);
+    EXPECT_EQ(unit, 5 | Segment::kOpaqueBlocker);
+    EXPECT_EQ(next, bytes.data() + second);
+    next = NextPacked(next, unit);
+    EXPECT_EQ(unit, 70000u);
+    NextPacked(next, unit);
+    EXPECT_EQ(unit, Segment::kNoUnit);
+    EXPECT_EQ(PackedUnitMask(bytes.data(), 3), UnitMaskBit(5) | UnitMaskBit(70000));
+    // A short unit takes ids below 2^15 only; a long one any; none, nothing.
+    EXPECT_TRUE(RewritePackedUnit(bytes.data(), 9 | Segment::kOpaqueBlocker));
+    EXPECT_FALSE(RewritePackedUnit(bytes.data(), 40000 | Segment::kOpaqueBlocker));
+    EXPECT_TRUE(RewritePackedUnit(bytes.data() + second, 123456));
+    EXPECT_FALSE(RewritePackedUnit(bytes.data() + third, 1));
+    std::vector<Segment> segments;
+    std::vector<std::uint8_t> fanOf;
+    ASSERT_TRUE(UnpackSample(bytes.data(), 3, apexes, segments, fanOf));
+    EXPECT_EQ(segments[0].unit, 9 | Segment::kOpaqueBlocker);
+    EXPECT_EQ(segments[1].unit, 123456u);
+    EXPECT_EQ(segments[2].unit, Segment::kNoUnit);
+}
+
+TEST(SegmentPacking, BytesThatReferToAMissingApexDoNotUnpack) {
+    FanApexes apexes;
+    const double light[3] = {0, 50, 0};
+    const std::uint8_t fan = apexes.AimFan(light);
+    const double o[3] = {1, 0, 1}, d[3] = {-1 / std::sqrt(2502.0), 50 / std::sqrt(2502.0), -1 / std::sqrt(2502.0)};
+    std::vector<std::uint8_t> bytes;
+    Segment s;
+    ASSERT_TRUE(PackSegment(o, d, std::sqrt(2502.0), Segment::kNoUnit, fan, nullptr, 0, apexes, bytes, s));
+    ASSERT_EQ(bytes[1] & packing::kDirectionMask, packing::kDirectionToApex);
+    std::vector<Segment> segments;
+    std::vector<std::uint8_t> fanOf;
+    EXPECT_TRUE(UnpackSample(bytes.data(), 1, apexes, segments, fanOf));
+    FanApexes none;
+    EXPECT_FALSE(UnpackSample(bytes.data(), 1, none, segments, fanOf));
+}
+
+TEST(SegmentPacking, RaysThatCannotBeStoredAppendNothing) {
+    FanApexes apexes;
+    std::vector<std::uint8_t> bytes;
+    const double o[3] = {1, 2, NAN}, d[3] = {1, 0, 0};
+    Segment s;
+    EXPECT_FALSE(PackSegment(o, d, 1.0, Segment::kNoUnit, FanApexes::kLoose, nullptr, 0, apexes, bytes, s));
+    EXPECT_TRUE(bytes.empty());
+}
+
+}  // namespace
