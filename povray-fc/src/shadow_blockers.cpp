@@ -40,14 +40,17 @@ bool BallDarkens(const Segment &s, const Ball &ball) {
     const double distanceSquared = Dot(off, off);
     // Through the ball at depth: inside the ball shrunk by m + g, with a chord that the
     // loop cannot step over from a surface just in front (twice its tolerance).
+    // POV-Ray's tolerances are depths along its unit direction; this segment's direction
+    // need not be unit (segment_packing.h), so they are divided by its length.
+    const double unit = std::sqrt(dd);
     const double inner = HalfChord(distanceSquared, ball.radius - m - g, dd);
-    if (inner < 2.0 * kShadowTolerance) return false;
+    if (inner < 2.0 * kShadowTolerance / unit) return false;
     // The whole ball, grown by m + g, between the tolerances: the traced ray enters and
     // leaves the real ball there, so the loop meets one of its surfaces (length was
     // rounded up when stored, so the test's reach is a hair shorter).
     const double outer = HalfChord(distanceSquared, ball.radius + m + g, dd);
     const double reach = double(s.length) * (1.0 - 0x1p-20);
-    const double tolerance = kShadowTolerance + g / std::sqrt(dd);
+    const double tolerance = (kShadowTolerance + g) / unit;
     return along - outer > tolerance && along + outer < reach - tolerance;
 }
 

@@ -57,6 +57,18 @@ TEST(ShadowBlockers, TheWholeBallMustLieBetweenTheTolerances) {
     EXPECT_FALSE(BallDarkens(s, Ball{{0, -10, 0}, 2}));
 }
 
+TEST(ShadowBlockers, TheTolerancesAreDepthsWhateverTheDirectionsLength) {
+    // A packed segment's direction need not be unit (segment_packing.h): here half, so
+    // its parameter runs twice the depth. The ball's near side lies 0.0007 from the
+    // origin, inside the loop's tolerance of 0.001 as a depth (0.0014 as a parameter).
+    const Segment half = ShadowTest({0, 0, 0}, {0, 0.5, 0}, 100);
+    EXPECT_FALSE(BallDarkens(half, Ball{{0, 2.0007, 0}, 2}));
+    EXPECT_TRUE(BallDarkens(half, Ball{{0, 2.01, 0}, 2}));
+    // Its far side 0.0007 before the light.
+    EXPECT_FALSE(BallDarkens(half, Ball{{0, 47.9993, 0}, 2}));
+    EXPECT_TRUE(BallDarkens(half, Ball{{0, 47.99, 0}, 2}));
+}
+
 TEST(ShadowBlockers, AChordTheLoopCouldStepOverDoesNotDarken) {
     // A loop restarting at a transparent surface just in front of the ball skips surfaces
     // within its tolerance: a chord of less than twice that proves nothing.
