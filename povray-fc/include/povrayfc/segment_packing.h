@@ -7,14 +7,16 @@
 // ray left), towards a light the block's bundles know (FanApexes); a reflected ray leaves
 // where its parent ended; a shadow test's pieces share one direction; a camera ray starts
 // at the camera. The packed form says so in a flag and at most one byte instead of 12 or
-// 24, and a unit direction it cannot derive takes 6 bytes (octahedral, 24 bits a side).
+// 24, and a direction it cannot derive takes 6 bytes (octahedral, 24 bits a side).
 //
 // Why it stays exact. A derived field is not the float nearest the traced double value, so
 // the packer keeps one only when the value unpacking will give (computed by the very
 // functions the unpacker calls) lies within kPackTolerance of the traced value: origin and
 // direction in the max norm, relative to their largest component; and a derived length
 // only when it is not shorter than the traced one. Otherwise the field is written in full
-// as MakeSegment rounds it. SegmentMargin (hull.h) is four times what that error can move
+// as MakeSegment rounds it. An octahedral direction is the traced one scaled onto the
+// octahedron |x| + |y| + |z| = 1 (reading it back takes no square root), and its length
+// is scaled the other way: the same points, another parametrisation of the ray. SegmentMargin (hull.h) is four times what that error can move
 // the ray near a target; povray-fc/README.md "Conservative in floating point".
 //
 // Layout of one packed segment, in this order:
@@ -53,7 +55,7 @@ enum : std::uint8_t {
     kOriginMask = 3,
 
     kDirectionExplicit = 0 << 2,
-    kDirectionOctahedral = 1 << 2,  // a unit vector, 24 bits a side
+    kDirectionOctahedral = 1 << 2,  // on the octahedron |x|+|y|+|z| = 1, 24 bits a side
     kDirectionSame = 2 << 2,        // the previous segment's
     kDirectionToApex = 3 << 2,      // from its origin towards its fan's apex (a light), unit
     kDirectionMask = 3 << 2,
