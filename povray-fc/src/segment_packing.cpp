@@ -127,42 +127,6 @@ std::int32_t GetInt24(const std::uint8_t *p) {
     return std::int32_t(u);
 }
 
-std::size_t UnitBytes(std::uint8_t flags) {
-    switch (flags & kUnitMask) {
-        case kUnitShort: return 2;
-        case kUnitLong: return 4;
-        default: return 0;
-    }
-}
-
-// Bytes after the header (fan and flags) up to the unit field.
-std::size_t BodyBytes(std::uint8_t flags) {
-    std::size_t n = 0;
-    const std::uint8_t origin = flags & kOriginMask;
-    if (origin == kOriginSameAs || origin == kOriginEndOf) n += 1;
-    if (origin == kOriginExplicit) n += 12;
-    const std::uint8_t direction = flags & kDirectionMask;
-    if (direction == kDirectionExplicit) n += 12;
-    if (direction == kDirectionOctahedral) n += 6;
-    if (!(flags & kLengthToApex)) n += 4;
-    return n;
-}
-
-std::uint32_t ReadUnit(const std::uint8_t *field, std::uint8_t flags) {
-    switch (flags & kUnitMask) {
-        case kUnitShort: {
-            const std::uint32_t v = std::uint32_t(field[0]) | (std::uint32_t(field[1]) << 8);
-            return (v & 0x7fffu) | ((v & 0x8000u) ? Segment::kOpaqueBlocker : 0u);
-        }
-        case kUnitLong: {
-            std::uint32_t v;
-            std::memcpy(&v, field, 4);
-            return v;
-        }
-        default: return Segment::kNoUnit;
-    }
-}
-
 // Unpacks one segment at `p` (the sample's `index`-th, after `earlier`); returns the byte
 // after it, or nullptr when it refers to what is not there.
 const std::uint8_t *UnpackOne(const std::uint8_t *p, const Segment *earlier, std::size_t index,
@@ -216,8 +180,8 @@ const std::uint8_t *UnpackOne(const std::uint8_t *p, const Segment *earlier, std
         std::memcpy(&s.length, p, 4);
         p += 4;
     }
-    s.unit = ReadUnit(p, flags);
-    p += UnitBytes(flags);
+    s.unit = packing::ReadUnit(p, flags);
+    p += packing::UnitBytes(flags);
     if (fan >= apexes.count) fan = FanApexes::kLoose;
     return p;
 }
@@ -349,19 +313,6 @@ bool UnpackSample(const std::uint8_t *bytes, std::uint32_t count, const FanApexe
     return true;
 }
 
-const std::uint8_t *NextPacked(const std::uint8_t *header, std::uint32_t &unit) {
-    const std::uint8_t flags = header[1];
-    const std::uint8_t *field = header + 2 + BodyBytes(flags);
-    unit = ReadUnit(field, flags);
-    return field + UnitBytes(flags);
-}
-
-std::size_t PackedSize(const std::uint8_t *bytes, std::uint32_t count) {
-    const std::uint8_t *p = bytes;
-    for (std::uint32_t i = 0; i < count; ++i) p += 2 + BodyBytes(p[1]) + UnitBytes(p[1]);
-    return std::size_t(p - bytes);
-}
-
 std::uint64_t PackedUnitMask(const std::uint8_t *bytes, std::uint32_t count) {
     std::uint64_t mask = 0;
     const std::uint8_t *p = bytes;
@@ -375,7 +326,7 @@ std::uint64_t PackedUnitMask(const std::uint8_t *bytes, std::uint32_t count) {
 
 bool RewritePackedUnit(std::uint8_t *header, std::uint32_t unit) {
     const std::uint8_t flags = header[1];
-    std::uint8_t *field = header + 2 + BodyBytes(flags);
+    std::uint8_t *field = header + 2 + packing::BodyBytes(flags);
     switch (flags & kUnitMask) {
         case kUnitShort: {
             if ((unit & ~Segment::kOpaqueBlocker) >= 0x8000u) return false;

@@ -35,6 +35,7 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <cstring>
 #include <vector>
 
 #include "povrayfc/fan_apexes.h"
@@ -69,6 +70,33 @@ enum : std::uint8_t {
 };
 // How far back an origin may refer.
 constexpr std::size_t kMaxReference = 64;
+
+// The bytes of a packed segment with these flags after its fan and flags, up to its unit;
+// and its unit's. Inline: walking a sample's units runs for every sample of a block whose
+// units changed.
+constexpr std::size_t BodyBytes(std::uint8_t flags) {
+    const std::uint8_t origin = flags & kOriginMask, direction = flags & kDirectionMask;
+    return (origin == kOriginSameAs || origin == kOriginEndOf ? 1 : origin == kOriginExplicit ? 12 : 0) +
+           (direction == kDirectionExplicit ? 12 : direction == kDirectionOctahedral ? 6 : 0) +
+           ((flags & kLengthToApex) ? 0 : 4);
+}
+constexpr std::size_t UnitBytes(std::uint8_t flags) {
+    return (flags & kUnitMask) == kUnitShort ? 2 : (flags & kUnitMask) == kUnitLong ? 4 : 0;
+}
+inline std::uint32_t ReadUnit(const std::uint8_t *field, std::uint8_t flags) {
+    switch (flags & kUnitMask) {
+        case kUnitShort: {
+            const std::uint32_t v = std::uint32_t(field[0]) | (std::uint32_t(field[1]) << 8);
+            return (v & 0x7fffu) | ((v & 0x8000u) ? Segment::kOpaqueBlocker : 0u);
+        }
+        case kUnitLong: {
+            std::uint32_t v;
+            std::memcpy(&v, field, 4);
+            return v;
+        }
+        default: return Segment::kNoUnit;
+    }
+}
 }  // namespace packing
 
 // Packs the ray origin + t * direction, t in [0, tmax], that ended on `unit` (a
@@ -90,10 +118,19 @@ bool UnpackSample(const std::uint8_t *bytes, std::uint32_t count, const FanApexe
 
 // Reads the unit of the packed segment whose header is at `header` (Segment::kNoUnit when
 // none) and returns where the next one begins: walking a sample's units without unpacking.
-const std::uint8_t *NextPacked(const std::uint8_t *header, std::uint32_t &unit);
+inline const std::uint8_t *NextPacked(const std::uint8_t *header, std::uint32_t &unit) {
+    const std::uint8_t flags = header[1];
+    const std::uint8_t *field = header + 2 + packing::BodyBytes(flags);
+    unit = packing::ReadUnit(field, flags);
+    return field + packing::UnitBytes(flags);
+}
 
 // The bytes a sample's `count` packed segments take.
-std::size_t PackedSize(const std::uint8_t *bytes, std::uint32_t count);
+inline std::size_t PackedSize(const std::uint8_t *bytes, std::uint32_t count) {
+    const std::uint8_t *p = bytes;
+    for (std::uint32_t i = 0; i < count; ++i) p += 2 + packing::BodyBytes(p[1]) + packing::UnitBytes(p[1]);
+    return std::size_t(p - bytes);
+}
 
 // The UnitMaskBit (sample_store.h) of every unit a sample's packed segments ended on.
 std::uint64_t PackedUnitMask(const std::uint8_t *bytes, std::uint32_t count);
