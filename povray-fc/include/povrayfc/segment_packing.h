@@ -1,4 +1,4 @@
-// Segment packing: a sample's ray segments as the store keeps them, 4 to 35 bytes each
+// Segment packing: a sample's ray segments as the store keeps them, 3 to 34 bytes each
 // where a Segment and its bundle number take 33.
 //
 // Why. A deep glass scene records about 27 segments per camera sample, and at 33 bytes
