@@ -107,6 +107,15 @@ bool IsApex(const FanApexes &apexes, std::uint8_t fan, bool origin) {
     return fan < apexes.count && apexes.isOrigin[fan] == origin;
 }
 
+// A unit id below 2^15 and the opaque-blocker bit, in 2 bytes (kUnitShort; ReadUnit).
+bool FitsShort(std::uint32_t unit) { return (unit & ~Segment::kOpaqueBlocker) < 0x8000u; }
+std::uint8_t *PutShortUnit(std::uint8_t *at, std::uint32_t unit) {
+    const std::uint32_t v = (unit & 0x7fffu) | ((unit & Segment::kOpaqueBlocker) ? 0x8000u : 0u);
+    at[0] = std::uint8_t(v);
+    at[1] = std::uint8_t(v >> 8);
+    return at + 2;
+}
+
 // Writes n bytes at `at` and returns the byte after them.
 std::uint8_t *Put(std::uint8_t *at, const void *p, std::size_t n) {
     std::memcpy(at, p, n);
@@ -257,7 +266,7 @@ bool PackSegment(const double origin[3], const double direction[3], double tmax,
     // The length, in units of the stored direction, rounded up as MakeSegment does; a
     // shadow ray that reached its light ends there.
     const double span = tmax * scale;
-    packed.length = scale == 1.0 ? plain.length : span < 1e-30 ? 1e-30f : float(span * (1.0 + 0x1p-22));
+    packed.length = StoredLength(span);
     if (light) {
         const float toApex = LengthToApex(packed.origin, packed.direction, apexes.point[fan]);
         // Never shorter than what was traced, and not longer than a hair more.
@@ -269,7 +278,7 @@ bool PackSegment(const double origin[3], const double direction[3], double tmax,
 
     packed.unit = unit;
     if (unit != Segment::kNoUnit)
-        flags |= (unit & ~Segment::kOpaqueBlocker) < 0x8000u ? kUnitShort : kUnitLong;
+        flags |= FitsShort(unit) ? kUnitShort : kUnitLong;
 
     // Written in place past the end, then trimmed: no call to copy a dozen bytes.
     const std::size_t start = out.size();
@@ -287,9 +296,7 @@ bool PackSegment(const double origin[3], const double direction[3], double tmax,
     }
     if (!(flags & kLengthToApex)) at = Put(at, &packed.length, 4);
     if ((flags & kUnitMask) == kUnitShort) {
-        const std::uint32_t v = (unit & 0x7fffu) | ((unit & Segment::kOpaqueBlocker) ? 0x8000u : 0u);
-        *at++ = std::uint8_t(v);
-        *at++ = std::uint8_t(v >> 8);
+        at = PutShortUnit(at, unit);
     } else if ((flags & kUnitMask) == kUnitLong) {
         at = Put(at, &unit, 4);
     }
@@ -328,13 +335,10 @@ bool RewritePackedUnit(std::uint8_t *header, std::uint32_t unit) {
     const std::uint8_t flags = header[1];
     std::uint8_t *field = header + 2 + packing::BodyBytes(flags);
     switch (flags & kUnitMask) {
-        case kUnitShort: {
-            if ((unit & ~Segment::kOpaqueBlocker) >= 0x8000u) return false;
-            const std::uint32_t v = (unit & 0x7fffu) | ((unit & Segment::kOpaqueBlocker) ? 0x8000u : 0u);
-            field[0] = std::uint8_t(v);
-            field[1] = std::uint8_t(v >> 8);
+        case kUnitShort:
+            if (!FitsShort(unit)) return false;
+            PutShortUnit(field, unit);
             return true;
-        }
         case kUnitLong:
             std::memcpy(field, &unit, 4);
             return true;

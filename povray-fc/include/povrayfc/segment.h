@@ -34,6 +34,11 @@ struct Segment {
     bool HullTested() const { return unit == kNoUnit || !(unit & kOpaqueBlocker); }
 };
 
+// A traced length as a segment stores it: a float never shorter than `tmax` (tmax * (1 +
+// 2^-22) rounds to a float above tmax: rounding to nearest moves it by at most 2^-24 of
+// itself), and not below 1e-30.
+inline float StoredLength(double tmax) { return tmax < 1e-30 ? 1e-30f : float(tmax * (1.0 + 0x1p-22)); }
+
 // The segment of a traced ray, origin + t * direction for t in [0, tmax], in single
 // precision. Returns false (and leaves `out` unspecified) when the ray cannot be stored
 // conservatively: NaN or infinite origin or direction, a direction too small or too large
@@ -58,9 +63,7 @@ inline bool MakeSegment(const double origin[3], const double direction[3], doubl
     out.direction[0] = d0 < flush ? 0.0f : float(direction[0]);
     out.direction[1] = d1 < flush ? 0.0f : float(direction[1]);
     out.direction[2] = d2 < flush ? 0.0f : float(direction[2]);
-    // Never shorter than the traced segment: tmax * (1 + 2^-22) rounds to a float above
-    // tmax (rounding to nearest moves it by at most 2^-24 of itself).
-    out.length = tmax < 1e-30 ? 1e-30f : float(tmax * (1.0 + 0x1p-22));
+    out.length = StoredLength(tmax);
     out.unit = Segment::kNoUnit;
     return true;
 }
