@@ -109,14 +109,6 @@ bool EndsOnChangedUnit(const StoredSample &s, BlockRecord &record, const FramePl
     return false;
 }
 
-// The UnitMaskBit of every unit the segments [first, first + count) ended on.
-std::uint64_t UnitMaskOf(const Segment *first, std::size_t count) {
-    std::uint64_t mask = 0;
-    for (std::size_t i = 0; i < count; ++i)
-        if (first[i].unit != Segment::kNoUnit) mask |= UnitMaskBit(first[i].UnitId());
-    return mask;
-}
-
 // A clearance (>= 0, rounded down to a float whose low mantissa bits are cleared) and the
 // bundle classes it holds for, in one word (StoredSample::clearance).
 constexpr std::uint32_t kClassMask = (std::uint32_t(1) << BlockHulls::kClassBits) - 1;
@@ -481,10 +473,8 @@ std::size_t BlockTracer::GatherSegments(BlockRecord &record) {
         const bool kept = keptFromOld_[i] != 0;
         const std::uint8_t *first = (kept ? *old_ : next_).packed.data() + s.firstByte;
         record.packed.insert(record.packed.end(), first, first + packedSizes_[i]);
-        if (kept) {
-            record.unitMask |= PackedUnitMask(first, s.segmentCount);
-        } else {
-            record.unitMask |= UnitMaskOf(nextSegments_.data() + nextFirstSegment_[i], s.segmentCount);
+        record.unitMask |= PackedUnitMask(first, s.segmentCount);
+        if (!kept) {
             tracedSegments_.emplace_back(nextFirstSegment_[i], s.segmentCount);
             tracedGroups_.push_back(s.group);
         }
@@ -528,7 +518,7 @@ bool BlockTracer::UpdateInPlace() {
             r.packed.resize(need);
         }
         std::copy_n(next_.packed.data() + traced.firstByte, newBytes, r.packed.data() + at);
-        r.unitMask |= UnitMaskOf(nextSegments_.data() + nextFirstSegment_[i], traced.segmentCount);
+        r.unitMask |= PackedUnitMask(r.packed.data() + at, traced.segmentCount);
         stored = traced;
         stored.firstByte = std::uint32_t(at);
         fresh += traced.segmentCount;
