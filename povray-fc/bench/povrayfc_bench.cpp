@@ -64,6 +64,7 @@ int main(int argc, char **argv) {
 
     std::vector<Segment> segments;
     std::vector<std::uint8_t> fanOf;
+    std::vector<std::uint8_t> packed;
     FanApexes apexes;
     segments.reserve(n);
     fanOf.reserve(n);
@@ -71,7 +72,8 @@ int main(int argc, char **argv) {
     const double record = MedianNs(n, [&] {
         segments.clear();
         fanOf.clear();
-        recorder.Begin(segments, fanOf, apexes, nullptr, 0);
+        packed.clear();
+        recorder.Begin(segments, fanOf, packed, apexes, nullptr, 0);
         StartRecordingRays(recorder);
         for (const Ray &r : rays) RecordRaySegment(r.o, r.d, r.t, kUnitNothing);
         StopRecordingRays();
@@ -103,7 +105,7 @@ int main(int argc, char **argv) {
         std::printf("test a stored segment, %3zu hulls%s: %6.2f ns (%.1f%% may meet)\n", set->size(),
                     index.HasGrid() ? " (grid)" : "       ", query, 100.0 * double(hits) / double(n));
     }
-    std::printf("stored segment:                  %6zu bytes; stored sample: %zu bytes + its segments\n",
-                sizeof(Segment), sizeof(StoredSample));
+    std::printf("stored segment:                  %6.2f bytes packed (%zu unpacked); stored sample: %zu bytes + its segments\n",
+                double(packed.size()) / double(segments.size() ? segments.size() : 1), sizeof(Segment), sizeof(StoredSample));
     return 0;
 }

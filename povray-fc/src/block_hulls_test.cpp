@@ -23,6 +23,7 @@ Vec3 Normalised(Vec3 v) {
 struct RecordedRays {
     std::vector<Segment> segments;
     std::vector<std::uint8_t> fanOf;
+    std::vector<std::uint8_t> packed;
     FanApexes apexes;
     BlockFans fans;
     bool fansBuilt = false;
@@ -39,7 +40,7 @@ RecordedRays RecordedBlock(std::mt19937_64 &rng, double spread) {
     SampleRecorder recorder;
     StartRecordingRays(recorder);
     for (int i = 0; i < 300; ++i) {
-        recorder.Begin(record.segments, record.fanOf, record.apexes, nullptr, 0);
+        recorder.Begin(record.segments, record.fanOf, record.packed, record.apexes, nullptr, 0);
         const Vec3 d = Normalised(look + Vec3{spread * u(rng), spread * u(rng), 0});
         const bool hits = u(rng) > -0.7;
         const double t = hits ? len(rng) : 2e10;

@@ -317,7 +317,7 @@ bool BlockTracer::Reuse(double x, double y, float rgbft[5]) {
 
 void BlockTracer::BeginSample() {
     if (!active_ || !record_) return;
-    recorder_.Begin(nextSegments_, nextFanOf_, next_.apexes, plan_->unitIds, plan_->unitCount, &next_.packed);
+    recorder_.Begin(nextSegments_, nextFanOf_, next_.packed, next_.apexes, plan_->unitIds, plan_->unitCount);
     StartRecordingRays(recorder_);
 }
 

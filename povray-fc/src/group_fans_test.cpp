@@ -97,7 +97,7 @@ BlockRecord RecordBlock(const Scene &scene, int left, int top, std::mt19937_64 &
     std::vector<std::uint8_t> fanOf;
     for (int y = top; y <= record.bottom; ++y)
         for (int x = left; x <= record.right; ++x) {
-            recorder.Begin(segments, fanOf, record.apexes, nullptr, 0, &record.packed);
+            recorder.Begin(segments, fanOf, record.packed, record.apexes, nullptr, 0);
             StartRecordingRays(recorder);
             TraceSample(scene, x, y, rng);
             StopRecordingRays();
@@ -191,7 +191,7 @@ TEST(GroupFans, GrownGroupsHoldTheSamplesTracedAnew) {
         std::vector<std::uint8_t> tracedFans;
         for (StoredSample &s : record.samples) {
             if (rng() % 4) continue;
-            recorder.Begin(traced, tracedFans, record.apexes, nullptr, 0, &record.packed);
+            recorder.Begin(traced, tracedFans, record.packed, record.apexes, nullptr, 0);
             StartRecordingRays(recorder);
             TraceSample(moved, s.x, s.y, rng);
             StopRecordingRays();

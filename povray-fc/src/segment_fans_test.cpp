@@ -22,6 +22,7 @@ Vec3 Normalised(Vec3 v) {
 struct RecordedBlock {
     std::vector<Segment> segments;
     std::vector<std::uint8_t> fanOf;
+    std::vector<std::uint8_t> packed;
     FanApexes apexes;
 };
 
@@ -36,7 +37,7 @@ RecordedBlock BlockRays(std::mt19937_64 &rng) {
     SampleRecorder recorder;
     StartRecordingRays(recorder);
     for (int i = 0; i < 200; ++i) {
-        recorder.Begin(b.segments, b.fanOf, b.apexes, nullptr, 0);
+        recorder.Begin(b.segments, b.fanOf, b.packed, b.apexes, nullptr, 0);
         const Vec3 d = Normalised(look + Vec3{0.05 * u(rng), 0.05 * u(rng), 0});
         const bool hits = u(rng) > -0.6;
         const double t = hits ? len(rng) : 2e10;
@@ -218,7 +219,7 @@ RecordedBlock SkyReflections(std::mt19937_64 &rng, const Vec3 &patch, double pat
     SampleRecorder recorder;
     StartRecordingRays(recorder);
     for (int i = 0; i < 200; ++i) {
-        recorder.Begin(b.segments, b.fanOf, b.apexes, nullptr, 0);
+        recorder.Begin(b.segments, b.fanOf, b.packed, b.apexes, nullptr, 0);
         const double eye[3] = {0.3, 2, -20};
         const Vec3 p = patch + Vec3{patchSize * u(rng), 0, patchSize * u(rng)};
         const Vec3 toP = Normalised(p - Vec3{eye[0], eye[1], eye[2]});
@@ -281,7 +282,7 @@ TEST(SegmentFans, GrowingAFanKeepsHoldingItsSegments) {
         // b's rays join a's block, as newly traced samples join a replayed block.
         const std::size_t first = a.segments.size();
         SampleRecorder recorder;
-        recorder.Begin(a.segments, a.fanOf, a.apexes, nullptr, 0);
+        recorder.Begin(a.segments, a.fanOf, a.packed, a.apexes, nullptr, 0);
         for (const Segment &s : b.segments) {
             a.segments.push_back(s);
             a.fanOf.push_back(BlockFans::kLoose);

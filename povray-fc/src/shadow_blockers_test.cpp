@@ -144,11 +144,12 @@ TEST(ShadowBlockers, EveryRayTheSegmentStandsForCrossesTheBallWithinTheTolerance
 TEST(ShadowBlockers, AnOpaqueBlockersTestIsOneSegmentOverTheWholeDepth) {
     std::vector<Segment> segments;
     std::vector<std::uint8_t> fanOf;
+    std::vector<std::uint8_t> packed;
     FanApexes apexes;
     const std::uint32_t ids[3] = {10, 11, 12};
     SampleRecorder recorder;
     StartRecordingRays(recorder);
-    recorder.Begin(segments, fanOf, apexes, ids, 3);
+    recorder.Begin(segments, fanOf, packed, apexes, ids, 3);
     double origin[3] = {0, 0, 0};
     const double up[3] = {0, 1, 0};
     RecordRaySegment(origin, up, 3.0, 0);
@@ -174,11 +175,12 @@ TEST(ShadowBlockers, AnOpaqueBlockersTestIsOneSegmentOverTheWholeDepth) {
 TEST(ShadowBlockers, AnyOtherBlockerKeepsItsPiecesAndWhereItStopped) {
     std::vector<Segment> segments;
     std::vector<std::uint8_t> fanOf;
+    std::vector<std::uint8_t> packed;
     FanApexes apexes;
     const std::uint32_t ids[3] = {10, 11, 12};
     SampleRecorder recorder;
     StartRecordingRays(recorder);
-    recorder.Begin(segments, fanOf, apexes, ids, 3);
+    recorder.Begin(segments, fanOf, packed, apexes, ids, 3);
     double origin[3] = {0, 0, 0};
     const double up[3] = {0, 1, 0};
     {

@@ -14,9 +14,10 @@ template <class Search>
 bool OrderSensitive(Search search) {
     std::vector<Segment> segments;
     std::vector<std::uint8_t> fans;
+    std::vector<std::uint8_t> packed;
     FanApexes apexes;
     SampleRecorder recorder;
-    recorder.Begin(segments, fans, apexes, nullptr, 0);
+    recorder.Begin(segments, fans, packed, apexes, nullptr, 0);
     StartRecordingRays(recorder);
     search();
     StopRecordingRays();
@@ -75,9 +76,10 @@ TEST(TieWatch, TheSlackGrowsWithTheBoxesAndAGrazingDirection) {
     double best = 0;
     std::vector<Segment> segments;
     std::vector<std::uint8_t> fans;
+    std::vector<std::uint8_t> packed;
     FanApexes apexes;
     SampleRecorder recorder;
-    recorder.Begin(segments, fans, apexes, nullptr, 0);
+    recorder.Begin(segments, fans, packed, apexes, nullptr, 0);
     StartRecordingRays(recorder);
     const double steep[3] = {0.0, 0.6, 0.8}, grazing[3] = {0.001, 0.6, 0.8};
     TieWatch a(steep, best), b(grazing, best);

@@ -27,20 +27,19 @@ namespace povrayfc {
 // finished sample needs no copy): each segment and its fan number.
 class SampleRecorder {
   public:
-    // Starts a sample whose segments go to the end of `segments` (and their fans to
-    // `fanOf`, against the block's `apexes`). `unitIds[i]` is the id of the frame's unit i
+    // Starts a sample whose segments are packed onto the end of `packed` (segment_packing.h)
+    // and, as unpacking will give them, appended to `segments` (their fans to `fanOf`),
+    // against the block's `apexes`. `unitIds[i]` is the id of the frame's unit i
     // (unit_ids.h), for `unitCount` units.
-    // With `packed`, each segment is also packed onto its end (segment_packing.h), and
-    // `segments` gets the segment as it will be unpacked.
-    void Begin(std::vector<Segment> &segments, std::vector<std::uint8_t> &fanOf, FanApexes &apexes,
-               const std::uint32_t *unitIds, std::size_t unitCount, std::vector<std::uint8_t> *packed = nullptr) {
+    void Begin(std::vector<Segment> &segments, std::vector<std::uint8_t> &fanOf, std::vector<std::uint8_t> &packed,
+               FanApexes &apexes, const std::uint32_t *unitIds, std::size_t unitCount) {
         segments_ = &segments;
         fanOf_ = &fanOf;
+        packed_ = &packed;
         apexes_ = &apexes;
         unitIds_ = unitIds;
         unitCount_ = unitCount;
-        packed_ = packed;
-        firstByte_ = packed ? packed->size() : 0;
+        firstByte_ = packed.size();
         byteStart_.clear();
         first_ = segments.size();
         everything_ = false;
@@ -69,8 +68,8 @@ class SampleRecorder {
     // `opaqueBlocker`: an opaque surface of `unit` ended the test (kOpaqueBlocker).
     void AddAimed(const double origin[3], const double direction[3], double tmax, const double aim[3],
                   std::uint32_t unit, bool opaqueBlocker = false) {
-        Segment probe;
-        if (!MakeSegment(origin, direction, tmax, probe)) {  // before its aim joins a bundle
+        // A light point that is no point must not become a bundle's apex.
+        if (!(std::isfinite(aim[0]) && std::isfinite(aim[1]) && std::isfinite(aim[2]))) {
             everything_ = true;
             return;
         }
@@ -84,10 +83,8 @@ class SampleRecorder {
         if (count >= Count()) return;
         segments_->resize(first_ + count);
         fanOf_->resize(first_ + count);
-        if (packed_) {
-            packed_->resize(byteStart_[count]);
-            byteStart_.resize(count);
-        }
+        packed_->resize(byteStart_[count]);
+        byteStart_.resize(count);
     }
     void MarkEverything() { everything_ = true; }
     // One of the sample's searches for a nearest intersection ended in a tie that the order
@@ -102,32 +99,25 @@ class SampleRecorder {
     void Discard() {
         segments_->resize(first_);
         fanOf_->resize(first_);
-        if (packed_) packed_->resize(firstByte_);
+        packed_->resize(firstByte_);
         byteStart_.clear();
     }
-    // Where the sample's packed segments begin (with `packed`).
+    // Where the sample's packed segments begin.
     std::size_t FirstByte() const { return firstByte_; }
 
   private:
-    // Appends the segment (and packs it, with `packed`); false when the ray cannot be
-    // stored, which makes the sample depend on everything.
+    // Packs the segment and appends it as unpacked; false when the ray cannot be stored,
+    // which makes the sample depend on everything.
     bool Store(const double origin[3], const double direction[3], double tmax, std::uint32_t unit,
                std::uint8_t fan) {
         Segment s;
-        bool stored;
-        if (packed_) {
-            const std::size_t at = packed_->size();
-            stored = PackSegment(origin, direction, tmax, unit, fan, segments_->data() + first_, Count(), *apexes_,
-                                 *packed_, s);
-            if (stored) byteStart_.push_back(std::uint32_t(at));
-        } else {
-            stored = MakeSegment(origin, direction, tmax, s);
-            s.unit = unit;
-        }
-        if (!stored) {
+        const std::size_t at = packed_->size();
+        if (!PackSegment(origin, direction, tmax, unit, fan, segments_->data() + first_, Count(), *apexes_, *packed_,
+                         s)) {
             everything_ = true;
             return false;
         }
+        byteStart_.push_back(std::uint32_t(at));
         segments_->push_back(s);
         fanOf_->push_back(fan);
         return true;
