@@ -29,6 +29,14 @@ def renderer_pids(coordinator):
             if "Frame_Control=" in coordinator_cmdline(p)]
 
 
+def parent_pid(pid):
+    try:
+        with open("/proc/%d/stat" % pid) as f:
+            return int(f.read().rsplit(")", 1)[1].split()[1])
+    except (OSError, ValueError, IndexError):
+        return 0
+
+
 def frame_scene(tmp_path, name, trouble):
     """moving.pov with `trouble` (SDL) for frame 5 only, in tmp_path; returns its path."""
     scene = tmp_path / name
@@ -57,8 +65,17 @@ def test_stopped_slave_work_is_copied_and_no_healthy_slave_is_lost(
     wait_for_frames(out, 2, p)
     victim = slave_pids(coordinator)[0]
     os.kill(victim, signal.SIGSTOP)
+    # Once the stall is noticed, the healthy slave renders with the host's every core (the
+    # stopped one's too): its renderer restarts with them.
+    cores = os.sysconf("SC_NPROCESSORS_ONLN")
+    all_cores = False
+    while p.poll() is None and not all_cores:
+        all_cores = any(parent_pid(r) != victim and "+WT%d " % cores in coordinator_cmdline(r)
+                        for r in renderer_pids(coordinator))
+        time.sleep(0.1)
     _, err = p.communicate(timeout=120)
     assert p.returncode == 0, err
+    assert all_cores or cores < 2, "the healthy slave never rendered with %d threads" % cores
     # The stopped slave's work went to the healthy one, which nobody took for dead.
     assert "another slave renders it too" in err, err
     assert "silent" not in err, err

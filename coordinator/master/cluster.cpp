@@ -187,13 +187,14 @@ bool Cluster::host_failed(const SlaveInfo &s)
     return true;
 }
 
-int Cluster::threads_for(const SlaveInfo &s) const
+int Cluster::threads_for(const SlaveInfo &s, const std::set<int> &stalled) const
 {
     auto h = hosts_.find(s.dtid);
     int cpus = h == hosts_.end() ? 1 : std::max(1, h->second.cpus);
     int n = 0;
     for (auto &kv : slaves_)
-        if (kv.second.dtid == s.dtid && kv.second.state != SlaveState::Gone)
+        if (kv.second.dtid == s.dtid && kv.second.state != SlaveState::Gone &&
+            (kv.first == s.tid || !stalled.count(kv.first)))
             n++;
     return std::max(1, cpus / std::max(1, n));
 }

@@ -8,6 +8,7 @@
 
 #include <algorithm>
 #include <map>
+#include <set>
 #include <string>
 #include <vector>
 
@@ -76,8 +77,10 @@ public:
     // A job failed on the slave's host: returns true when the host is now left out.
     bool host_failed(const SlaveInfo &s);
 
-    // POV-Ray threads for a slave: its host's cores over the live slaves there.
-    int threads_for(const SlaveInfo &s) const;
+    // POV-Ray threads for a slave: its host's cores over the slaves there that work. A slave
+    // in `stalled` (its job passed its deadline: stopped, or stuck in an endless frame) is
+    // given no work, so its cores go to the others of its host until it speaks again.
+    int threads_for(const SlaveInfo &s, const std::set<int> &stalled) const;
 
     SlaveInfo *slave(int tid);
     HostInfo *host(int dtid);

@@ -633,6 +633,15 @@ bool Schedule::suspended(int slave) const
     return it != slaves_.end() && it->second.suspended;
 }
 
+std::set<int> Schedule::suspended_slaves() const
+{
+    std::set<int> out;
+    for (auto &kv : slaves_)
+        if (kv.second.suspended)
+            out.insert(kv.first);
+    return out;
+}
+
 bool Schedule::resume(int slave)
 {
     auto it = slaves_.find(slave);

@@ -140,6 +140,8 @@ public:
     void stall(int id, std::vector<Job> &cancel);
     // Whether slave is suspended: it gets no work.
     bool suspended(int slave) const;
+    // Every suspended slave.
+    std::set<int> suspended_slaves() const;
     // The slave spoke: its suspension ends once its stalled job is over (a result, a failure,
     // a cancel it confirmed), since a slave that is stopped itself says nothing. Returns
     // whether it was suspended and is no longer.
