@@ -3,7 +3,8 @@
 // none.
 //
 // A job is stalled when its slave has not finished it within a deadline learned from the run:
-// kFactor times the median time of its host's recent jobs (scaled to the job's pixels), never
+// kFactor times the median time of its host's recent jobs (scaled to the job's pixels; a job's
+// time is its renderer's parse and trace, as a frame's time in the run's statistics), never
 // less than kFloor seconds (the goal is to act within max(10 s, 5 times the median frame),
 // and the master looks every 0.25 s); before a job of any host finished, the master's --timeout. A
 // renderer's first frame (with frame coherence traced in full) and a copy of another slave's
@@ -35,8 +36,8 @@ public:
     // fallback: the deadline before any job finished (the master's --timeout).
     explicit Liveness(double fallback) : fallback_(fallback) {}
 
-    // A job of `pixels` on host took `seconds`, from when its slave began it to its result;
-    // slave has now delivered a result.
+    // A job of `pixels` on host took `seconds` (its renderer's parse and trace); slave has now
+    // delivered a result.
     void job_took(int slave, int host, double pixels, double seconds);
 
     // The deadline of a job of `pixels` on host, begun by slave; copy: it copies another

@@ -126,7 +126,7 @@ void Master::send_job(SlaveInfo &s, const Job &job)
     m.tiles = job.tiles;
     for (int t : job.tiles)
         m.rects.push_back(sched_->tile(t));
-    m.threads = cluster_.threads_for(s);
+    m.threads = cluster_.threads_for(s, sched_->suspended_slaves());
     s.last_given = now();
     int r = send_msg(s.tid, FC_JOB, m);
     debug_log("FC_JOB %d frame %d, %zu tile(s) to t%x", job.id, m.frame, job.tiles.size(),
@@ -260,10 +260,14 @@ void Master::on_frame(int src)
     cost.rays = fr.rays;
     cost.fresh = fr.fresh != 0;
     costs_.note_result(cost);
-    // How long the job took since its slave began it: what its host's deadlines learn from.
+    // How long the job took, what its host's deadlines learn from: the renderer's own parse
+    // and trace time (the frame time the goals speak of; a renderer's start-up, once a run, is
+    // the fresh cost's), else the time since its slave began it.
     const Job *job = sched_->find(fr.job);
-    if (job && job->rendering >= 0 && s)
-        liveness_.job_took(src, s->dtid, cost.pixels, now() - job->rendering);
+    if (job && job->rendering >= 0 && s) {
+        double took = fr.parse_seconds + fr.trace_seconds;
+        liveness_.job_took(src, s->dtid, cost.pixels, took > 0 ? took : now() - job->rendering);
+    }
     std::vector<Job> cancel;
     sched_->job_done(fr.job, idx, cancel, now());
     cancel_jobs(cancel);
