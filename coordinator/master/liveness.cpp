@@ -12,9 +12,12 @@ double median(const std::deque<double> &values)
 {
     if (values.empty())
         return 0;
+    // The mean of the two middle values of an even count: early in a run (two jobs, one of
+    // them a renderer's first) the larger alone would stretch every deadline.
     std::vector<double> v(values.begin(), values.end());
-    std::nth_element(v.begin(), v.begin() + long(v.size() / 2), v.end());
-    return v[v.size() / 2];
+    std::sort(v.begin(), v.end());
+    size_t mid = v.size() / 2;
+    return v.size() % 2 ? v[mid] : (v[mid - 1] + v[mid]) / 2;
 }
 
 void remember(std::deque<double> &values, double v, size_t keep)
