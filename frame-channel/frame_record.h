@@ -26,14 +26,16 @@
 //
 // The reads section (reads=R; parse_reads.h collects it) says which files the frame's picture
 // depends on, so that fc-master's resume keeps a frame only while they are as they were. It
-// is lines of text, each "F<TAB>path<LF>" or "A<TAB>path<LF>":
+// is lines of text, each "F<TAB>path<LF>", "A<TAB>path<LF>" or "U<TAB>path<LF>":
 //   F  a file the frame's parse opened and read: the scene, an include, a macro's file, an
 //      image map, a density file, a font, a file #fopen'd for #read (POV-Ray's Locate_File);
 //   A  a path the parse's search looked at and found no file at: every candidate tried by a
 //      lookup that found nothing (file_exists, a missing include) and those tried before the
 //      one a lookup found (a file created there later would be found instead); each name with
 //      each extension of its type, in the current directory and then in each library path
-//      (FileMessageHandler::FindFilePath).
+//      (FileMessageHandler::FindFilePath);
+//   U  a path of either kind with a line break in it, which a line cannot carry (its breaks
+//      are spaces here): the frame's inputs cannot be known, and a resume renders it again.
 // Paths are as POV-Ray formed them: relative ones are relative to the renderer's directory.
 // Each line once, in the order first met; only this frame's parse (from its start to its
 // record). No section (or R = 0): the renderer reported nothing.

@@ -1,6 +1,8 @@
 // parse_reads.cpp - the files a frame's parse read or looked for in vain (see parse_reads.h).
 #include "frame-channel/parse_reads.h"
 
+#include <algorithm>
+
 namespace fc {
 
 ParseReads &ParseReads::process()
@@ -30,9 +32,15 @@ void ParseReads::note(char kind, const std::string &path)
         return;
     std::string line;
     line.reserve(path.size() + 3);
-    line += kind;
+    // A line break in a name would end its line early, and what follows could pass for a
+    // line of its own: the name goes in a 'U' line instead, its breaks made spaces (for the
+    // message alone), and the frame's inputs cannot be known.
+    bool unsayable = path.find('\n') != std::string::npos;
+    line += unsayable ? 'U' : kind;
     line += '\t';
     line += path;
+    if (unsayable)
+        std::replace(line.begin(), line.end(), '\n', ' ');
     line += '\n';
     std::lock_guard<std::mutex> lock(mutex_);
     // A macro of an include file opens the file at every call: one line for all of them.

@@ -36,6 +36,20 @@ TEST(ParseReads, LinesComeOnceInTheOrderFirstMet)
     EXPECT_EQ(reads.take(), "");
 }
 
+TEST(ParseReads, ANameWithALineBreakIsNeverSplitIntoLines)
+{
+    // A file named "x<LF>F<TAB>y" must not read as the files "x" and "y": the first would be
+    // hashed in its place, and an edit of the real file missed on resume.
+    ParseReads reads;
+    reads.enable(true);
+    reads.opened("scene.pov");
+    reads.opened("x\nF\ty");
+    reads.absent("gone\n.inc");
+    EXPECT_EQ(reads.take(), "F\tscene.pov\n"
+                            "U\tx F\ty\n"
+                            "U\tgone .inc\n");
+}
+
 TEST(ParseReads, AFileAbsentAndThenReadHasBothLines)
 {
     ParseReads reads;

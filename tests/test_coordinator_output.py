@@ -403,6 +403,30 @@ def test_changed_include_renders_exactly_the_frames_that_read_it(coordinator, tm
     assert [f["frame"] for f in s["frames"] if not f["resumed"]] == [5, 6, 7, 8]
 
 
+def test_include_with_a_line_break_in_its_name_is_never_trusted(coordinator, tmp_path):
+    # Frames 5-8 include a file named "col<LF>F<TAB>x.inc": its name must not pass for the
+    # files "col" and "x.inc" (an edit of the real file would then be missed on resume).
+    scene = tmp_path / "scene.pov"
+    with open(os.path.join(COORDINATOR_SCENES, "moving.pov")) as f:
+        scene.write_text(f.read() + '#if (frame_number >= 5) '
+                         '#include concat("col", chr(10), "F", chr(9), "x.inc") #end\n')
+    (tmp_path / "col\nF\tx.inc").write_text("sphere { <1, 2, 0>, 0.3 pigment { rgb 1 } }\n")
+    for decoy in ("col", "x.inc"):      # what a split name would hash, and trust
+        (tmp_path / decoy).write_text("// not read by the scene\n")
+    out = tmp_path / "out"
+    stats = tmp_path / "stats.json"
+    args = ["--no-fc", "--stats", str(stats), str(scene)] + SMALL + ["-o", str(out)]
+    first = coordinator.run(args, cwd=tmp_path)
+    assert first.returncode == 0, first.stderr
+    assert "frame 5 from host" in first.stderr and "has a line break" in first.stderr, \
+        first.stderr
+    # Unknown inputs are never trusted: the same command renders those frames again.
+    r = coordinator.run(args, cwd=tmp_path)
+    assert r.returncode == 0, r.stderr
+    s = coordinator_stats(stats)
+    assert [f["frame"] for f in s["frames"] if not f["resumed"]] == [5, 6, 7, 8], s
+
+
 def fresh_frames(scene, options, cwd, out):
     """One POV-Ray process's frames of scene, rendered in cwd (where its relative files are):
     {file name: pixels}."""

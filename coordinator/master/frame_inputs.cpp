@@ -36,6 +36,12 @@ bool parse_reads(const std::string &text, const std::string &cwd, FrameInputs &i
         pos = nl == std::string::npos ? text.size() : nl + 1;
         if (line.empty())
             continue;
+        if (line.size() >= 2 && line[0] == 'U' && line[1] == '\t') {
+            err = "the name of a file it read or looked for has a line break (" +
+                  line.substr(2) + "): its inputs cannot be recorded, and a resume renders "
+                  "it again";
+            return false;
+        }
         if (line.size() < 3 || (line[0] != 'F' && line[0] != 'A') || line[1] != '\t') {
             err = "malformed line in the files a frame read: " + line;
             return false;

@@ -33,7 +33,7 @@ struct FrameInputs {
 
 // The files of a reads section ("F<TAB>path" and "A<TAB>path" lines; relative paths are the
 // renderer's, whose directory is cwd), in order, each once. False with err on a malformed
-// line.
+// line, or a "U" line (a name with a line break: the inputs cannot be known).
 bool parse_reads(const std::string &text, const std::string &cwd, FrameInputs &inputs,
                  std::string &err);
 

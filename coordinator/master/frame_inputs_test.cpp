@@ -23,6 +23,10 @@ TEST(FrameInputs, ParsedAbsoluteAndOnce)
     EXPECT_FALSE(in.files[2].read);
     EXPECT_FALSE(parse_reads("X\tnothing\n", "/", in, err));
     EXPECT_EQ(err, "malformed line in the files a frame read: X\tnothing");
+    // A name with a line break, as the renderer reports it: the inputs cannot be known.
+    FrameInputs unknowable;
+    EXPECT_FALSE(parse_reads("F\tscene.pov\nU\tx F\ty\n", "/", unknowable, err));
+    EXPECT_NE(err.find("has a line break (x F\ty)"), std::string::npos) << err;
 }
 
 TEST(FrameInputs, AnEditedReadFileOrAnAbsentOneThatAppearedIsAChange)
