@@ -4,13 +4,25 @@
 // frame.h must always be the first POV file included (pulls in platform config)
 #include "backend/frame.h"
 
+#include <algorithm>
 #include <cstdint>
 #include <cstring>
 #include "backend/scene/camera.h"
 #include "backend/scene/objects.h"
+#include "backend/shape/boxes.h"
 #include "backend/shape/cones.h"
 #include "backend/shape/csg.h"
+#include "backend/shape/discs.h"
+#include "backend/shape/lathe.h"
+#include "backend/shape/ovus.h"
+#include "backend/shape/polygon.h"
+#include "backend/shape/prism.h"
+#include "backend/shape/sor.h"
 #include "backend/shape/spheres.h"
+#include "backend/shape/super.h"
+#include "backend/shape/torus.h"
+#include "backend/shape/triangle.h"
+#include "backend/shape/truetype.h"
 
 #include "povrayfc/parse_hasher.h"
 #include "povrayfc/shape_hulls.h"
@@ -125,6 +137,119 @@ bool IsUnion(Object object)
     return dynamic_cast<CSGUnion *>(object) != nullptr && dynamic_cast<CSGMerge *>(object) == nullptr;
 }
 
+// A shape whose inside test is true only within its box (for a height field it is true
+// below it, for a mesh with an inside_vector wherever a ray from the point crosses it an
+// odd number of times, for a plane or a quadric possibly anywhere).
+bool ShapeInsideWithinBox(Object object)
+{
+    return dynamic_cast<pov::Sphere *>(object) != nullptr || dynamic_cast<pov::Box *>(object) != nullptr ||
+           dynamic_cast<pov::Cone *>(object) != nullptr || dynamic_cast<pov::Torus *>(object) != nullptr ||
+           dynamic_cast<pov::Superellipsoid *>(object) != nullptr || dynamic_cast<pov::Lathe *>(object) != nullptr ||
+           dynamic_cast<pov::Prism *>(object) != nullptr || dynamic_cast<pov::Sor *>(object) != nullptr ||
+           dynamic_cast<pov::Ovus *>(object) != nullptr || dynamic_cast<pov::Triangle *>(object) != nullptr ||
+           dynamic_cast<pov::Disc *>(object) != nullptr || dynamic_cast<pov::Polygon *>(object) != nullptr ||
+           dynamic_cast<pov::TrueType *>(object) != nullptr;
+}
+
+// Every point where the object's inside test (Inside_Object) is true lies in its box, and
+// its box bounds its surfaces: made of the shapes above, with no bounded_by (the box may
+// then be the bound's, which the inside test ignores) or clipped_by anywhere in it, and
+// no part inverted below its top (its own inversion only swaps inside and outside of the
+// shape its box bounds).
+bool InsideWithinBox(Object object)
+{
+    if (!object->Bound.empty() || !object->Clip.empty() || Test_Flag(object, INFINITE_FLAG))
+        return false;
+    const CompoundObject *compound = dynamic_cast<const CompoundObject *>(object);
+    if (compound == nullptr)
+        return ShapeInsideWithinBox(object);
+    if (dynamic_cast<const CSG *>(object) == nullptr || compound->children.empty())
+        return false;
+    for (Object child : compound->children)
+        if (Test_Flag(child, INVERTED_FLAG) || !InsideWithinBox(child))
+            return false;
+    return true;
+}
+
+// A merge, intersection or difference whose parts can be units of their own: two or
+// more, each one's inside within its box (README.md, "Parts of merges, intersections and
+// differences"). A part that is itself a CSG stays whole.
+bool CutsIntoParts(Object object)
+{
+    if (dynamic_cast<CSG *>(object) == nullptr || IsUnion(object))
+        return false;
+    const std::vector<Object> &children = static_cast<CSG *>(object)->children;
+    if (children.size() < 2)
+        return false;
+    for (Object child : children)
+        if (!InsideWithinBox(child))
+            return false;
+    return true;
+}
+
+// Where a change of part `i` of the CSG `object` can show: in an intersection or a
+// difference a surface counts only inside every other part, so within the box of each
+// other part that is not inverted (POV-Ray's own box of an intersection is made the same
+// way); in a merge, anywhere in the part's own box.
+void PartReach(Object object, std::size_t i, float lowerLeft[3], float lengths[3])
+{
+    const std::vector<Object> &children = static_cast<CSG *>(object)->children;
+    float upper[3];
+    for (int axis = 0; axis < 3; ++axis)
+    {
+        lowerLeft[axis] = children[i]->BBox.Lower_Left[axis];
+        upper[axis] = lowerLeft[axis] + children[i]->BBox.Lengths[axis];
+    }
+    if (dynamic_cast<pov::CSGIntersection *>(object) != nullptr)
+        for (std::size_t j = 0; j < children.size(); ++j)
+        {
+            if (j == i || Test_Flag(children[j], INVERTED_FLAG))
+                continue;
+            for (int axis = 0; axis < 3; ++axis)
+            {
+                const float low = children[j]->BBox.Lower_Left[axis];
+                lowerLeft[axis] = std::max(lowerLeft[axis], low);
+                upper[axis] = std::min(upper[axis], low + children[j]->BBox.Lengths[axis]);
+            }
+        }
+    // An empty reach (the part never shows) is kept a flat box where it would be.
+    for (int axis = 0; axis < 3; ++axis)
+        lengths[axis] = std::max(upper[axis] - lowerLeft[axis], 0.0f);
+}
+
+// The parts of a merge, intersection or difference (CutsIntoParts), each a unit hashed
+// with everything around it (`hash`: the CSG's own shell and what is around the CSG) and
+// its place among the parts (the parts' order decides the CSG's own ties). A part's box
+// is where a change of it can show (PartReach).
+void AddParts(Object object, std::uint64_t hash, std::uint64_t geometry, SignatureBuilder &signature,
+              std::vector<Object> &unitObjects)
+{
+    const std::vector<Object> &children = static_cast<CSG *>(object)->children;
+    const std::uint32_t group = signature.NewCutGroup();
+    for (std::size_t i = 0; i < children.size(); ++i)
+    {
+        Object part = children[i];
+        const std::uint64_t place = CombineHashes(0x63757470617274ULL, i);  // "cutpart"
+        float lowerLeft[3], lengths[3];
+        PartReach(object, i, lowerLeft, lengths);
+        const std::uint32_t unit = signature.AddUnit(CombineHashes(CombineHashes(hash, place), WholeHash(part, false)),
+                                                     CombineHashes(CombineHashes(geometry, place), WholeHash(part, true)),
+                                                     lowerLeft, lengths, false);
+        // The solid of a sphere, cylinder or cone (inverted or not) lies in its capsule.
+        Capsule capsule;
+        if (dynamic_cast<CSG *>(part) == nullptr && CapsuleOf(part, capsule))
+            signature.SetUnitCapsule(unit, capsule);
+        // The shadow tests an opaque part stops hold while no other part changes shape
+        // (FramePlan::kUnitSiblingChanged); a part is never a ball.
+        if (AllOpaque(part))
+            signature.SetUnitOpaque(unit);
+        signature.SetUnitCutPart(unit, group);
+        SetUnit(part, unit);
+        if (unit != kUnitUnknown)
+            unitObjects.push_back(part);
+    }
+}
+
 // `darkening`: every union around the object darkens shadows (DarkensShadows).
 void AddUnits(Object object, std::uint64_t path, std::uint64_t pathGeometry, bool darkening, SignatureBuilder &signature,
               std::vector<Object> &unitObjects)
@@ -143,6 +268,11 @@ void AddUnits(Object object, std::uint64_t path, std::uint64_t pathGeometry, boo
         const bool childrenDarken = darkening && DarkensShadows(object);
         for (Object child : children)
             AddUnits(child, lit, geometry, childrenDarken, signature, unitObjects);
+        return;
+    }
+    if (CutsIntoParts(object))
+    {
+        AddParts(object, hash, geometry, signature, unitObjects);
         return;
     }
     const bool csg = dynamic_cast<CSG *>(object) != nullptr;
@@ -212,7 +342,9 @@ void MarkUnitsAroundCamera(const pov::Camera &camera, const std::vector<Object> 
         // The box first: the inside test of a mesh or an isosurface is no small thing.
         if (!u.infinite && !u.bounds.Near(location, reach))
             continue;
-        if (reach > 0.0 || pov::Inside_Object(camera.Location, unitObjects[unit], thread))
+        // A part of a merge, intersection or difference decides whether the camera is in
+        // the CSG wherever it is near the part's box, inside the part or not.
+        if (reach > 0.0 || u.cutPart || pov::Inside_Object(camera.Location, unitObjects[unit], thread))
             signature.SetUnitContainsCamera(std::uint32_t(unit));
     }
 }

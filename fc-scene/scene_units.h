@@ -29,8 +29,9 @@ typedef pov::ObjectBase *Object;
 
 // Cuts the object item `item` (after Post_Process) into units: through unions (and light
 // groups, and a light's looks_like) to their parts, each hashed with the hashes of
-// everything around it; a merge, intersection or difference is one unit hashed with all
-// its parts. Adds each unit to `signature`, writes its index into every object below it a
+// everything around it; the parts of a merge, intersection or difference are units of
+// their own too (UnitSignature::cutPart) where each part's inside lies in its box, else the
+// CSG is one unit hashed with all its parts. Adds each unit to `signature`, writes its index into every object below it a
 // ray can report as hit (ObjectBase::fcUnit), and appends its object to `unitObjects`.
 void AddUnits(Object item, SignatureBuilder &signature, std::vector<Object> &unitObjects);
 

@@ -20,13 +20,15 @@ ITEM = re.compile(r"povrayfc-signature: item (\d+) (\w+) ([0-9a-f]{16}) line=(\d
 SUMMARY = re.compile(r"povrayfc-signature: (camera|lights|global) ([0-9a-f]{16})$")
 INEXACT = re.compile(r"povrayfc-signature: inexact (.+)$")
 OBJECTS = re.compile(r"povrayfc-signature: objects (\d+)$")
+UNIT = re.compile(r"povrayfc-signature: unit (\d+) item=(\d+) ([0-9a-f]{16}) geometry=([0-9a-f]{16})(.*)$")
 
 
 class Frame:
     """One frame's signature as the parser listed it."""
 
     def __init__(self):
-        self.items = []       # dicts: cls, hash, line, label, bounds (tuple or None), infinite, lights
+        self.items = []       # dicts: cls, hash, line, label, bounds (tuple or None), infinite, lights,
+                              # units (dicts: hash, geometry, bounds, infinite, opaque, cut_part)
         self.camera = self.lights = self.glob = None
         self.inexact = []
         self.object_count = None
@@ -58,7 +60,15 @@ def parse_listing(stderr):
                 bounds = tuple(float(v) for v in b.group(1).split(","))
             frame.items.append(dict(cls=m.group(2), hash=m.group(3), line=int(m.group(4)),
                                     label=m.group(5), bounds=bounds,
-                                    infinite=" infinite" in rest, lights=" lights" in rest))
+                                    infinite=" infinite" in rest, lights=" lights" in rest, units=[]))
+            continue
+        m = UNIT.search(line)
+        if m:
+            rest = m.group(5)
+            b = re.search(r"bounds=(\S+)", rest)
+            frame.items[-1]["units"].append(dict(
+                hash=m.group(3), geometry=m.group(4), bounds=tuple(float(v) for v in b.group(1).split(",")) if b else None,
+                infinite=" infinite" in rest, opaque=" opaque" in rest, cut_part=" cut-part" in rest))
             continue
         m = SUMMARY.search(line)
         if m:
@@ -273,6 +283,46 @@ def test_moving_csg_cutter(tmp_path):
         assert want - 0.01 < got <= want
     for got, want in zip(hi, (1, 1, 1)):
         assert want <= got < want + 0.01
+
+
+def test_parts_of_a_difference_are_units_of_their_own(tmp_path):
+    scene = HEADER + """difference { // @diff
+  box { <-1, 0, -1>, <1, 1, 1> }
+  sphere { <-1 + 2 * clock, 1, -1>, 0.5 }
+  pigment { rgb 1 }
+}
+intersection { // @inter
+  box { <3, 0, 0>, <5, 1, 1> }
+  cylinder { <4, 0.5, -5>, <4, 0.5, 5>, 0.4 + 0.2 * clock }
+}
+merge { // @merge
+  sphere { <8, 0, 0>, 1 }
+  sphere { <8, 2, 0>, 1.5 }
+}
+difference { // @bounded (a bounded_by: its box may be smaller than where its inside test holds)
+  box { <10, 0, 0>, <12, 1, 1> }
+  sphere { <11, 1, 0>, 0.5 bounded_by { box { <10.5, 0.5, -0.5>, <11.5, 1, 0.5> } } }
+}
+"""
+    f1, f2 = signatures(tmp_path, scene)
+    box, cutter = f1.at(line_of(scene, "@diff"))["units"]
+    box2, cutter2 = f2.at(line_of(scene, "@diff"))["units"]
+    # The box did not change; the cutter did. Both are parts, and opaque.
+    assert box["hash"] == box2["hash"] and cutter["hash"] != cutter2["hash"]
+    assert box["cut_part"] and cutter["cut_part"] and box["opaque"] and cutter["opaque"]
+    # A change of the cutter shows only inside the box: its unit's box is clipped to it
+    # (the ball reaches x -1.5 and z -1.5, y 1.5).
+    lo, hi = cutter["bounds"][:3], cutter["bounds"][3:]
+    assert lo[0] >= -1.01 and lo[2] >= -1.01 and hi[1] <= 1.01
+    # In an intersection too; in a merge a part's own surfaces show anywhere in its box.
+    slab, rod = f1.at(line_of(scene, "@inter"))["units"]
+    assert rod["bounds"][2] >= -0.01 and rod["bounds"][5] <= 1.01
+    assert slab["hash"] == f2.at(line_of(scene, "@inter"))["units"][0]["hash"]
+    low, high = f1.at(line_of(scene, "@merge"))["units"]
+    assert high["bounds"][4] >= 3.49 and low["bounds"][1] <= -0.99
+    # A part with bounded_by keeps the CSG one unit.
+    (whole,) = f1.at(line_of(scene, "@bounded"))["units"]
+    assert not whole["cut_part"]
 
 
 def test_mesh_vertex_moving_inside_unchanged_bounds(tmp_path):

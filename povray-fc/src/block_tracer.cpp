@@ -96,6 +96,15 @@ bool EndsOnChangedUnit(const StoredSample &s, BlockRecord &record, const FramePl
         if (segment.unit == Segment::kNoUnit) continue;
         const std::uint32_t unit = segment.UnitId();
         if (unit >= changed.size() || changed[unit] == FramePlan::kUnitKept) continue;
+        // A part beside a part of its CSG that changed shape: an opaque blocker's test still
+        // holds where the blocking point is in neither that part's old box nor its new one
+        // (README.md, "Parts of merges, intersections and differences"); every other segment
+        // meets the hulls as usual.
+        if (changed[unit] == FramePlan::kUnitSiblingChanged) {
+            if ((segment.unit & Segment::kOpaqueBlocker) && (plan.changes == nullptr || plan.changes->MayMeet(segment)))
+                return true;
+            continue;
+        }
         if (!(segment.unit & Segment::kOpaqueBlocker)) return true;
         if (changed[unit] == FramePlan::kUnitRecoloured) continue;
         const Blocker *blocker = plan.blockers ? DarkeningBlocker(segment, *plan.blockers) : nullptr;

@@ -3,6 +3,7 @@
 #include "povrayfc/change_detection.h"
 
 #include <unordered_map>
+#include <unordered_set>
 
 namespace povrayfc {
 
@@ -42,11 +43,42 @@ class KeyedIndices {
     std::unordered_map<std::uint64_t, std::vector<std::uint32_t>> map_;
 };
 
+// Per vanished unit (`vanished`, indices into last.units): it is a part of a merge,
+// intersection or difference every part of which vanished.
+std::vector<std::uint8_t> WholeCsgChanged(const SceneSignature &last, const std::vector<std::uint32_t> &vanished) {
+    std::unordered_map<std::uint32_t, std::uint32_t> parts, gone;
+    for (const UnitSignature &u : last.units)
+        if (u.cutPart) ++parts[u.cutGroup];
+    for (std::uint32_t i : vanished)
+        if (last.units[i].cutPart) ++gone[last.units[i].cutGroup];
+    std::vector<std::uint8_t> whole(vanished.size(), 0);
+    for (std::size_t k = 0; k < vanished.size(); ++k) {
+        const UnitSignature &u = last.units[vanished[k]];
+        whole[k] = u.cutPart && gone[u.cutGroup] == parts[u.cutGroup];
+    }
+    return whole;
+}
+
 }  // namespace
 
 Hull UnitHull(const UnitSignature &unit) {
     return unit.hasCapsule ? MakeHull(unit.bounds, unit.capsule) : MakeHull(unit.bounds);
 }
+
+namespace {
+
+// Adds the unit's hull to the frame's; false, with the frame made full, for an unbounded one.
+bool AddHull(const UnitSignature &unit, FrameChange &change) {
+    if (unit.infinite) {
+        change.fullReason = "an unbounded object changed shape";
+        change.hulls.clear();
+        return false;
+    }
+    change.hulls.push_back(UnitHull(unit));
+    return true;
+}
+
+}  // namespace
 
 FrameChange CompareFrames(const FrameSetup &lastSetup, const SceneSignature &last, const FrameSetup &setup,
                           const SceneSignature &now, bool photons) {
@@ -86,6 +118,7 @@ FrameChange CompareFrames(const FrameSetup &lastSetup, const SceneSignature &las
     std::vector<std::uint32_t> appeared;
     for (std::uint32_t i = 0; i < now.units.size(); ++i)
         if (!before.Take(now.units[i].hash, change.continues[i])) appeared.push_back(i);
+    const std::vector<std::uint32_t> unchanged = change.continues;  // kNew where appeared
     before.ForEachLeft([&](std::uint32_t index) { change.vanished.push_back(index); });
     if (appeared.empty() && change.vanished.empty() && !change.orderChanged) return change;
 
@@ -104,25 +137,62 @@ FrameChange CompareFrames(const FrameSetup &lastSetup, const SceneSignature &las
     // A new unit whose geometry a vanished one had changed in appearance alone: no ray that
     // did not end on the old one meets it, and an opaque one still darkens the shadow tests
     // the old one answered. Any other new unit is tested by its hull.
-    KeyedIndices oldShapes;
+    //
+    // A part of a merge, intersection or difference decides by its solid which surfaces of
+    // the other parts count, and, where they have no texture of their own, their colour: a
+    // ray need not end on it to depend on it. A part whose shape changed is tested at its
+    // old place and its new, and the shadow tests the other parts stopped as opaque
+    // blockers no longer hold by themselves (partsBesideAChange); one changed in appearance
+    // alone is tested the same, unless every part of its CSG changed (what takes its colour
+    // ended on one of them). README.md, "Parts of merges, intersections and differences".
+    const std::vector<std::uint8_t> wholeCsgChanged = WholeCsgChanged(last, change.vanished);
+    KeyedIndices oldShapes, oldParts;
+    std::unordered_set<std::uint32_t> reshapedNow, reshapedLast;  // CSGs (cutGroup) a part of which has a hull
     change.shadowsKept.assign(change.vanished.size(), 0);
-    for (std::uint32_t k = 0; k < change.vanished.size(); ++k) oldShapes.Add(last.units[change.vanished[k]].geometry, k);
+    for (std::uint32_t k = 0; k < change.vanished.size(); ++k) {
+        const UnitSignature &old = last.units[change.vanished[k]];
+        if (!old.cutPart) {
+            oldShapes.Add(old.geometry, k);
+        } else if (wholeCsgChanged[k]) {
+            oldParts.Add(old.geometry, k);
+        } else {
+            reshapedLast.insert(old.cutGroup);
+            if (!AddHull(old, change)) return change;
+        }
+    }
+    std::vector<std::pair<std::uint32_t, std::uint32_t>> recolouredParts;  // (unit, its index in vanished)
     for (std::uint32_t i : appeared) {
         std::uint32_t same;
-        if (oldShapes.Take(now.units[i].geometry, same)) {
+        if (now.units[i].cutPart ? oldParts.Take(now.units[i].geometry, same)
+                                  : oldShapes.Take(now.units[i].geometry, same)) {
             change.shadowsKept[same] = now.units[i].opaque ? 1 : 0;
             change.continues[i] = change.vanished[same];
+            if (now.units[i].cutPart) recolouredParts.emplace_back(i, same);
             continue;
         }
-        if (now.units[i].infinite) {
-            change.fullReason = "an unbounded object changed shape";
-            change.hulls.clear();
-            return change;
-        }
-        change.hulls.push_back(UnitHull(now.units[i]));
+        if (now.units[i].cutPart) reshapedNow.insert(now.units[i].cutGroup);
+        if (!AddHull(now.units[i], change)) return change;
         if (now.units[i].hasBall && change.blockers.size() < FrameChange::kMaxBlockers)
             change.blockers.push_back(Blocker{now.units[i].ball, i});
     }
+    // The parts that changed shape: where they were.
+    bool bounded = true;
+    oldParts.ForEachLeft([&](std::uint32_t k) {
+        reshapedLast.insert(last.units[change.vanished[k]].cutGroup);
+        bounded = bounded && AddHull(last.units[change.vanished[k]], change);
+    });
+    if (!bounded) return change;
+    // A part recoloured beside one that changed shape keeps no shadow test by itself.
+    for (const auto &part : recolouredParts)
+        if (reshapedNow.count(now.units[part.first].cutGroup) != 0 ||
+            reshapedLast.count(last.units[change.vanished[part.second]].cutGroup) != 0)
+            change.shadowsKept[part.second] = 0;
+    // The parts that stayed beside one that changed shape.
+    for (std::uint32_t i = 0; i < now.units.size(); ++i)
+        if (now.units[i].cutPart && unchanged[i] != FrameChange::kNew &&
+            (reshapedNow.count(now.units[i].cutGroup) != 0 ||
+             reshapedLast.count(last.units[unchanged[i]].cutGroup) != 0))
+            change.partsBesideAChange.push_back(i);
     return change;
 }
 

@@ -102,6 +102,97 @@ TEST(ChangeDetection, IdenticalUnitsAreMatchedAsAMultiset) {
     EXPECT_NE(c.vanished[0], c.continues[0]);
 }
 
+// A part of a merge, intersection or difference decides by its solid which surfaces of the
+// other parts count: a ray that never ended on it may still depend on it.
+UnitSignature Part(std::uint64_t hash, std::uint64_t geometry, double x, std::uint32_t csg = 1) {
+    UnitSignature u = Unit(hash, geometry, x);
+    u.cutPart = true;
+    u.cutGroup = csg;
+    return u;
+}
+
+TEST(ChangeDetection, AMovedPartOfACsgIsTestedAtItsOldPlaceAndItsNew) {
+    // A cutter moved through a wall: where it was, the wall's surface is back.
+    const SceneSignature a = Scene({Part(10, 100, 0), Part(11, 110, 5)});
+    const SceneSignature b = Scene({Part(10, 100, 0), Part(12, 120, 6)});
+    const FrameChange c = CompareFrames(Frame(), a, Frame(), b, false);
+    ASSERT_EQ(c.fullReason, "");
+    EXPECT_EQ(c.vanished, std::vector<std::uint32_t>{1});
+    EXPECT_EQ(c.hulls.size(), 2u);
+    EXPECT_TRUE(Covers(c.hulls, 5));
+    EXPECT_TRUE(Covers(c.hulls, 6));
+    EXPECT_FALSE(Covers(c.hulls, 0));
+    // A part that goes reaches every ray through where it was.
+    const FrameChange gone = CompareFrames(Frame(), a, Frame(), Scene({Part(10, 100, 0)}), false);
+    EXPECT_TRUE(Covers(gone.hulls, 5));
+}
+
+TEST(ChangeDetection, APartOfACsgRecolouredAloneIsTestedWhereItIs) {
+    // Where another part has no texture, a point of it inside this one takes this one's
+    // colour: a ray that ended on that part depends on it.
+    const SceneSignature a = Scene({Part(10, 100, 0), Part(11, 110, 5)});
+    const FrameChange c = CompareFrames(Frame(), a, Frame(), Scene({Part(10, 100, 0), Part(13, 110, 5)}), false);
+    ASSERT_EQ(c.fullReason, "");
+    EXPECT_EQ(c.continues[1], FrameChange::kNew);
+    EXPECT_EQ(c.vanished, std::vector<std::uint32_t>{1});
+    EXPECT_TRUE(Covers(c.hulls, 5));
+    EXPECT_FALSE(Covers(c.hulls, 0));
+}
+
+TEST(ChangeDetection, ACsgRecolouredWholeHasNoHull) {
+    // Every part changed colour: whatever took a part's colour ended on one of them. A part
+    // of another CSG that stayed does not count.
+    const SceneSignature a = Scene({Part(10, 100, 0), Part(11, 110, 5), Part(20, 200, 9, 2)});
+    const SceneSignature b = Scene({Part(12, 100, 0), Part(13, 110, 5), Part(20, 200, 9, 2)});
+    const FrameChange c = CompareFrames(Frame(), a, Frame(), b, false);
+    ASSERT_EQ(c.fullReason, "");
+    EXPECT_EQ(c.vanished.size(), 2u);
+    EXPECT_TRUE(c.hulls.empty());
+    EXPECT_EQ(c.continues[0], 0u);
+    EXPECT_EQ(c.continues[1], 1u);
+    // One of its parts changed shape as well: that one is tested where it was and is.
+    const FrameChange moved =
+        CompareFrames(Frame(), a, Frame(), Scene({Part(12, 100, 0), Part(14, 140, 6), Part(20, 200, 9, 2)}), false);
+    EXPECT_EQ(moved.hulls.size(), 2u);
+    EXPECT_TRUE(Covers(moved.hulls, 5));
+    EXPECT_TRUE(Covers(moved.hulls, 6));
+    EXPECT_FALSE(Covers(moved.hulls, 0));
+}
+
+TEST(ChangeDetection, ThePartsBesideAPartThatChangedShapeAreNamed) {
+    // The box of a difference stays while its cutter moves: a shadow test the box stopped
+    // holds only where the cutter never was nor is. The part of another CSG is not named.
+    const SceneSignature a = Scene({Part(10, 100, 0), Part(11, 110, 5), Part(20, 200, 9, 2)});
+    const FrameChange moved =
+        CompareFrames(Frame(), a, Frame(), Scene({Part(10, 100, 0), Part(12, 120, 6), Part(20, 200, 9, 2)}), false);
+    EXPECT_EQ(moved.partsBesideAChange, std::vector<std::uint32_t>{0});
+    // The whole CSG recoloured: no part changed shape, its opaque parts keep their shadows.
+    UnitSignature box = Part(10, 100, 0), cutter = Part(11, 110, 5);
+    box.opaque = cutter.opaque = true;
+    UnitSignature box2 = box, cutter2 = cutter;
+    box2.hash = 13;
+    cutter2.hash = 14;
+    const FrameChange recoloured = CompareFrames(Frame(), Scene({box, cutter}), Frame(), Scene({box2, cutter2}), false);
+    EXPECT_TRUE(recoloured.partsBesideAChange.empty());
+    EXPECT_EQ(recoloured.shadowsKept, (std::vector<std::uint8_t>{1, 1}));
+    // Recoloured while its cutter moved: the box keeps no shadow by itself.
+    UnitSignature moved2 = cutter;
+    moved2.hash = 15;
+    moved2.geometry = 150;
+    moved2.bounds = Box{Vec3{6, 0, 0}, Vec3{7, 1, 1}};
+    const FrameChange both = CompareFrames(Frame(), Scene({box, cutter}), Frame(), Scene({box2, moved2}), false);
+    EXPECT_EQ(both.shadowsKept, (std::vector<std::uint8_t>{0, 0}));
+}
+
+TEST(ChangeDetection, AnUnboundedPartOfACsgThatGoesIsAFullFrame) {
+    UnitSignature part = Part(40, 400, 0);
+    part.infinite = true;
+    part.bounds = Box();
+    EXPECT_EQ(CompareFrames(Frame(), Scene({Unit(10, 100, 3), part}), Frame(), Scene({Unit(10, 100, 3)}), false)
+                  .fullReason,
+              "an unbounded object changed shape");
+}
+
 TEST(ChangeDetection, AnUnboundedUnitThatChangesShapeIsAFullFrameAndOneThatChangesColourIsNot) {
     UnitSignature plane = Unit(40, 400, 0);
     plane.infinite = true;

@@ -199,6 +199,17 @@ void FrameCoherence::NumberUnits(const FrameChange &change, std::size_t unitCoun
         changedIds_.push_back(id);
         plan_.changedUnitMask |= UnitMaskBit(id);
     }
+    // Parts beside a part of their CSG that changed shape: the shadow tests they stopped as
+    // opaque blockers meet the hulls (FramePlan::kUnitSiblingChanged).
+    for (std::size_t k = 0; !afresh && k < change.partsBesideAChange.size(); ++k) {
+        const std::uint32_t index = change.partsBesideAChange[k];
+        if (index >= unitIds_.Current().size()) continue;
+        const std::uint32_t id = unitIds_.Current()[index];
+        if (id >= changedUnits_.size() || changedUnits_[id] != FramePlan::kUnitKept) continue;
+        changedUnits_[id] = FramePlan::kUnitSiblingChanged;
+        changedIds_.push_back(id);
+        plan_.changedUnitMask |= UnitMaskBit(id);
+    }
     plan_.unitIds = unitIds_.Current().data();
     plan_.unitCount = unitIds_.Current().size();
     plan_.changedUnits = &changedUnits_;

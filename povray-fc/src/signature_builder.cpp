@@ -14,6 +14,7 @@ void SignatureBuilder::Reset() {
     debug_ = DebugSignaturesEnabled();
     current_ = Item();
     items_.clear();
+    cutGroups_ = 0;
 }
 
 bool SignatureBuilder::ObjectBox(const float lowerLeft[3], const float lengths[3], Box &box) {
@@ -88,6 +89,12 @@ void SignatureBuilder::SetUnitContainsCamera(std::uint32_t unit) {
 
 void SignatureBuilder::SetUnitOpaque(std::uint32_t unit) {
     if (unit < signature_.units.size()) signature_.units[unit].opaque = true;
+}
+
+void SignatureBuilder::SetUnitCutPart(std::uint32_t unit, std::uint32_t group) {
+    if (unit >= signature_.units.size()) return;
+    signature_.units[unit].cutPart = true;
+    signature_.units[unit].cutGroup = group;
 }
 
 void SignatureBuilder::SetUnitBall(std::uint32_t unit, const Vec3 &centre, double radius) {
@@ -192,6 +199,7 @@ std::string SignatureBuilder::DebugListing() const {
             AppendBounds(out, unit.infinite, unit.bounds);
             if (unit.containsCamera) out << " camera";
             if (unit.opaque) out << " opaque";
+            if (unit.cutPart) out << " cut-part";
             out << '\n';
         }
         ++index;

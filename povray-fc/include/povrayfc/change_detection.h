@@ -48,6 +48,9 @@ struct FrameChange {
     std::vector<Hull> hulls;
     static constexpr std::size_t kMaxBlockers = 256;
     std::vector<Blocker> blockers;
+    // This frame's units (indices) that are unchanged parts of a merge, intersection or
+    // difference another part of which changed shape (FramePlan::kUnitSiblingChanged).
+    std::vector<std::uint32_t> partsBesideAChange;
 
     bool NothingChanged() const {
         return fullReason.empty() && hulls.empty() && vanished.empty() && !orderChanged;

@@ -52,6 +52,11 @@ struct FramePlan {
     static constexpr std::uint8_t kUnitRecoloured = 1;  // same shape, still opaque: shadow
                                                         // tests its surfaces darkened hold
     static constexpr std::uint8_t kUnitChanged = 2;
+    // A part of a merge, intersection or difference that stayed while another part of its
+    // CSG changed shape: whether its surface is there hangs on that part, so a shadow test
+    // it stopped as an opaque blocker holds only while it meets none of the frame's hulls;
+    // what ended on it otherwise is tested against the hulls as usual.
+    static constexpr std::uint8_t kUnitSiblingChanged = 3;
     const std::vector<std::uint8_t> *changedUnits = nullptr;
     std::uint64_t changedUnitMask = 0;
     // The opaque balls among this frame's new shapes: a shadow test a changed unit's opaque

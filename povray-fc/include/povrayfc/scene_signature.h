@@ -58,6 +58,13 @@ struct UnitSignature {
     // A ball inside it that darkens every shadow test crossing it (shadow_blockers.h).
     bool hasBall = false;
     Ball ball;
+    // A part of a merge, intersection or difference, a unit of its own: where its solid
+    // is decides which surfaces of the other parts count (POV-Ray's inside tests), so when
+    // it changes in any way every ray through its old or its new box is tested, and its
+    // surfaces never answer a shadow test as an opaque blocker (README.md, "Parts of
+    // merges, intersections and differences").
+    bool cutPart = false;
+    std::uint32_t cutGroup = 0;  // for a part: which CSG of the frame it belongs to
 };
 
 struct SceneSignature {

@@ -59,6 +59,10 @@ public:
     void SetUnitOpaque(std::uint32_t unit);
     // The unit is an opaque, shadow-casting ball (UnitSignature::ball).
     void SetUnitBall(std::uint32_t unit, const Vec3 &centre, double radius);
+    // A new merge, intersection or difference whose parts are units (its number), and the
+    // unit that is one of its parts (UnitSignature::cutPart, cutGroup).
+    std::uint32_t NewCutGroup() { return ++cutGroups_; }
+    void SetUnitCutPart(std::uint32_t unit, std::uint32_t group);
     std::size_t UnitCount() const { return signature_.units.size(); }
     const UnitSignature &Unit(std::uint32_t unit) const { return signature_.units[unit]; }
 
@@ -123,6 +127,7 @@ private:
     bool debug_ = false;
     Item current_;
     std::vector<Item> items_;   // only kept when debugging
+    std::uint32_t cutGroups_ = 0;  // NewCutGroup's count in this parse
 };
 
 }  // namespace povrayfc
