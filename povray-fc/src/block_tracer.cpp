@@ -158,6 +158,7 @@ bool BlockTracer::Begin(std::uint32_t serial, int left, int top, int right, int 
     next_.samples.clear();
     next_.packed.clear();
     next_.apexes.Clear();
+    nextUnitMask_ = 0;
     nextSegments_.clear();
     nextFanOf_.clear();
     nextFirstSegment_.clear();
@@ -352,6 +353,8 @@ void BlockTracer::EndSample(double x, double y, const float rgbft[5]) {
     } else {
         s.firstByte = std::uint32_t(recorder_.FirstByte());
         s.segmentCount = std::uint32_t(recorder_.Count());
+        for (std::size_t k = recorder_.First(); k < nextSegments_.size(); ++k)
+            if (nextSegments_[k].unit != Segment::kNoUnit) nextUnitMask_ |= UnitMaskBit(nextSegments_[k].UnitId());
     }
     next_.samples.push_back(s);
     keptFromOld_.push_back(0);
@@ -439,7 +442,7 @@ void BlockTracer::End() {
     record->pixels.assign(next_.pixels.begin(), next_.pixels.end());
     if (record_) {
         record->apexes = next_.apexes;
-        const std::size_t live = GatherSegments(*record);
+        const std::size_t live = old_ ? GatherSegments(*record) : TakeTracedSegments(*record);
         // Grow the old cones by what was traced anew, unless much of the block is new
         // (cones only ever widen when grown); otherwise they are built when needed.
         std::size_t fresh = 0;
@@ -457,6 +460,17 @@ void BlockTracer::End() {
     if (!plan.store->Put(serial_, std::move(record)) || conesPassedBudget_) ++plan.counters->overBudgetBlocks;
     active_ = false;
     endedActive_ = true;
+}
+
+std::size_t BlockTracer::TakeTracedSegments(BlockRecord &record) {
+    // Every sample was traced, so next_.packed holds their segments in their order, each
+    // sample's from its firstByte (a discarded sample's bytes were cut off again).
+    record.packed.assign(next_.packed.begin(), next_.packed.end());
+    record.unitMask = nextUnitMask_;
+    std::size_t live = 0;
+    for (const StoredSample &s : record.samples)
+        if (s.segmentCount != StoredSample::kEverything) live += s.segmentCount;
+    return live;
 }
 
 std::size_t BlockTracer::GatherSegments(BlockRecord &record) {

@@ -76,6 +76,10 @@ class BlockTracer {
     // sample's from old_, a traced one's from next_; fills tracedSegments_ and
     // tracedGroups_. Returns how many segments the record holds.
     std::size_t GatherSegments(BlockRecord &record);
+    // When no sample was kept from an old record: the traced samples' segments, copied
+    // as they were packed, and their units' mask as they were recorded. Returns how many
+    // segments the record holds.
+    std::size_t TakeTracedSegments(BlockRecord &record);
     // When the block was replayed with old_'s samples in old_'s order: writes the traced
     // samples, their segments and the pixels into old_ itself (fills tracedSegments_ and
     // tracedGroups_) and returns true. A replayed block traces a few of
@@ -103,6 +107,7 @@ class BlockTracer {
     // grow by these.
     std::vector<Segment> nextSegments_;
     std::vector<std::uint8_t> nextFanOf_;
+    std::uint64_t nextUnitMask_ = 0;  // UnitMaskBit of every unit a segment traced into next_ ended on
     std::vector<std::uint32_t> nextFirstSegment_;  // per sample of next_: its first in nextSegments_ (traced ones)
     std::vector<std::uint8_t> keptFromOld_;  // per sample of next_: reused (its segments are old_'s)
     std::vector<std::size_t> packedSizes_;   // GatherSegments: per sample, its packed bytes
