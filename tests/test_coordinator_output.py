@@ -420,9 +420,12 @@ def test_include_with_a_line_break_in_its_name_is_never_trusted(coordinator, tmp
     assert first.returncode == 0, first.stderr
     assert "frame 5 from host" in first.stderr and "has a line break" in first.stderr, \
         first.stderr
-    # Unknown inputs are never trusted: the same command renders those frames again.
+    # Unknown inputs are never trusted: the same command renders those frames again, and
+    # says why.
     r = coordinator.run(args, cwd=tmp_path)
     assert r.returncode == 0, r.stderr
+    assert "rendering 4 frame(s) again: what it read could not be recorded when it was rendered" \
+        in r.stderr, r.stderr
     s = coordinator_stats(stats)
     assert [f["frame"] for f in s["frames"] if not f["resumed"]] == [5, 6, 7, 8], s
 

@@ -110,7 +110,7 @@ std::vector<std::string> InputHashes::changed(const FrameInputs &recorded)
 {
     std::vector<std::string> out;
     if (!recorded.known)
-        return {"(a file changed while the frame was rendered)"};
+        return {"(what the frame read could not be recorded)"};
     for (const FrameInputs::File &f : recorded.files) {
         uint64_t contents = 0;
         double mtime = 0;

@@ -25,7 +25,9 @@ struct FrameInputs {
         uint64_t contents = 0;      // hash_words of its bytes when read
     };
     std::vector<File> files;
-    bool known = true;              // false: a file changed while the frame was rendered
+    // false: what the frame read could not be recorded (a file changed while it was
+    // rendered, a name with a line break, a record cut short): never trusted on a resume
+    bool known = true;
 
     // One id for these files and their contents (16 hex digits); "" when not known.
     std::string id() const;

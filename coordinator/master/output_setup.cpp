@@ -60,6 +60,8 @@ std::string inputs_changed(const FrameFiles &files, const OutputDir &dir, int in
 {
     FrameInputs recorded;
     if (dir.recorded_inputs(base_name(files.final_path(index)), recorded)) {
+        if (!recorded.known)
+            return "what it read could not be recorded when it was rendered";
         std::vector<std::string> changed = hashes.changed(recorded);
         if (changed.empty())
             return "";
