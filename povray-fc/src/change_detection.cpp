@@ -59,14 +59,6 @@ std::vector<std::uint8_t> WholeCsgChanged(const SceneSignature &last, const std:
     return whole;
 }
 
-}  // namespace
-
-Hull UnitHull(const UnitSignature &unit) {
-    return unit.hasCapsule ? MakeHull(unit.bounds, unit.capsule) : MakeHull(unit.bounds);
-}
-
-namespace {
-
 // Adds the unit's hull to the frame's; false, with the frame made full, for an unbounded one.
 bool AddHull(const UnitSignature &unit, FrameChange &change) {
     if (unit.infinite) {
@@ -78,7 +70,30 @@ bool AddHull(const UnitSignature &unit, FrameChange &change) {
     return true;
 }
 
+// After the hulls: the CSGs (cutGroup, in the last frame and in this one) a part of which
+// changed shape. A part recoloured in such a CSG keeps no shadow test by itself, and the
+// parts that stayed in one are named (FrameChange::partsBesideAChange).
+void NoteReshapedCsgs(const SceneSignature &last, const SceneSignature &now,
+                      const std::vector<std::uint32_t> &unchanged,
+                      const std::vector<std::pair<std::uint32_t, std::uint32_t>> &recolouredParts,
+                      const std::unordered_set<std::uint32_t> &reshapedLast,
+                      const std::unordered_set<std::uint32_t> &reshapedNow, FrameChange &change) {
+    for (const auto &part : recolouredParts)
+        if (reshapedNow.count(now.units[part.first].cutGroup) != 0 ||
+            reshapedLast.count(last.units[change.vanished[part.second]].cutGroup) != 0)
+            change.shadowsKept[part.second] = 0;
+    for (std::uint32_t i = 0; i < now.units.size(); ++i)
+        if (now.units[i].cutPart && unchanged[i] != FrameChange::kNew &&
+            (reshapedNow.count(now.units[i].cutGroup) != 0 ||
+             reshapedLast.count(last.units[unchanged[i]].cutGroup) != 0))
+            change.partsBesideAChange.push_back(i);
+}
+
 }  // namespace
+
+Hull UnitHull(const UnitSignature &unit) {
+    return unit.hasCapsule ? MakeHull(unit.bounds, unit.capsule) : MakeHull(unit.bounds);
+}
 
 FrameChange CompareFrames(const FrameSetup &lastSetup, const SceneSignature &last, const FrameSetup &setup,
                           const SceneSignature &now, bool photons) {
@@ -181,18 +196,7 @@ FrameChange CompareFrames(const FrameSetup &lastSetup, const SceneSignature &las
         reshapedLast.insert(last.units[change.vanished[k]].cutGroup);
         bounded = bounded && AddHull(last.units[change.vanished[k]], change);
     });
-    if (!bounded) return change;
-    // A part recoloured beside one that changed shape keeps no shadow test by itself.
-    for (const auto &part : recolouredParts)
-        if (reshapedNow.count(now.units[part.first].cutGroup) != 0 ||
-            reshapedLast.count(last.units[change.vanished[part.second]].cutGroup) != 0)
-            change.shadowsKept[part.second] = 0;
-    // The parts that stayed beside one that changed shape.
-    for (std::uint32_t i = 0; i < now.units.size(); ++i)
-        if (now.units[i].cutPart && unchanged[i] != FrameChange::kNew &&
-            (reshapedNow.count(now.units[i].cutGroup) != 0 ||
-             reshapedLast.count(last.units[unchanged[i]].cutGroup) != 0))
-            change.partsBesideAChange.push_back(i);
+    if (bounded) NoteReshapedCsgs(last, now, unchanged, recolouredParts, reshapedLast, reshapedNow, change);
     return change;
 }
 
