@@ -496,13 +496,15 @@ std::size_t BlockTracer::GatherSegments(BlockRecord &record) {
         const bool kept = keptFromOld_[i] != 0;
         const std::uint8_t *first = (kept ? *old_ : next_).packed.data() + s.firstByte;
         record.packed.insert(record.packed.end(), first, first + packedSizes_[i]);
-        record.unitMask |= PackedUnitMask(first, s.segmentCount);
-        if (!kept) {
+        if (kept) {
+            record.unitMask |= PackedUnitMask(first, s.segmentCount);
+        } else {
             tracedSegments_.emplace_back(nextFirstSegment_[i], s.segmentCount);
             tracedGroups_.push_back(s.group);
         }
         s.firstByte = std::uint32_t(at);
     }
+    record.unitMask |= nextUnitMask_;  // the traced samples'
     return live;
 }
 
@@ -541,13 +543,13 @@ bool BlockTracer::UpdateInPlace() {
             r.packed.resize(need);
         }
         std::copy_n(next_.packed.data() + traced.firstByte, newBytes, r.packed.data() + at);
-        r.unitMask |= PackedUnitMask(r.packed.data() + at, traced.segmentCount);
         stored = traced;
         stored.firstByte = std::uint32_t(at);
         fresh += traced.segmentCount;
         tracedSegments_.emplace_back(nextFirstSegment_[i], traced.segmentCount);
         tracedGroups_.push_back(traced.group);
     }
+    r.unitMask |= nextUnitMask_;  // the traced samples'
     if (4 * r.deadBytes > r.packed.size()) CompactSegments(r);
     // A sample that depended on everything was traced again: is there another one left?
     if (everythingReplaced) {

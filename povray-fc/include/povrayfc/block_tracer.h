@@ -107,7 +107,10 @@ class BlockTracer {
     // grow by these.
     std::vector<Segment> nextSegments_;
     std::vector<std::uint8_t> nextFanOf_;
-    std::uint64_t nextUnitMask_ = 0;  // UnitMaskBit of every unit a segment traced into next_ ended on
+    // UnitMaskBit of every unit a segment traced into next_ ended on, worked out as each
+    // sample ends: the new or updated record's mask takes it (a kept sample's comes from
+    // its packed bytes).
+    std::uint64_t nextUnitMask_ = 0;
     std::vector<std::uint32_t> nextFirstSegment_;  // per sample of next_: its first in nextSegments_ (traced ones)
     std::vector<std::uint8_t> keptFromOld_;  // per sample of next_: reused (its segments are old_'s)
     std::vector<std::size_t> packedSizes_;   // GatherSegments: per sample, its packed bytes
