@@ -45,9 +45,10 @@ TEST(ShapeHulls, TransformedUnitCylinderLiesInItsCapsule) {
         double m[4][4];
         RandomTransform(rng, m);
         const Capsule c = CapsuleOfUnitCylinder(m);
-        for (int k = 0; k < 500; ++k) {
-            const double r = std::sqrt(u(rng)), a = angle(rng);
-            const Vec3 p = Apply(m, Vec3{r * std::cos(a), r * std::sin(a), u(rng)});
+        for (int k = 0; k < 2000; ++k) {
+            // On the rim: the points farthest from the axis, where a radius too small fails.
+            const double a = angle(rng);
+            const Vec3 p = Apply(m, Vec3{std::cos(a), std::sin(a), u(rng)});
             // Invariant: points of the cylinder are within the capsule's radius of its axis.
             ASSERT_LE(c.AxisDistance(p), c.radius * (1 + 1e-12)) << t << " " << k;
         }
@@ -63,13 +64,30 @@ TEST(ShapeHulls, SphereAndEllipsoidLieInTheirCapsules) {
         double m[4][4];
         RandomTransform(rng, m);
         const Capsule c = CapsuleOfSphere(centre, 1.5, &m);
-        for (int k = 0; k < 500; ++k) {
+        for (int k = 0; k < 5000; ++k) {
             Vec3 d{u(rng), u(rng), u(rng)};
             const double n = std::sqrt(d.x * d.x + d.y * d.y + d.z * d.z);
             const Vec3 p = Apply(m, Vec3{centre[0] + 1.5 * d.x / n, centre[1] + 1.5 * d.y / n, centre[2] + 1.5 * d.z / n});
             ASSERT_LE(c.AxisDistance(p), c.radius * (1 + 1e-12));
         }
     }
+}
+
+TEST(ShapeHulls, ARotatedAndScaledShapeGetsItsOwnRadius) {
+    // Rotations and scalings keep the cross-section's axes orthogonal: the capsule is then as
+    // thin as the shape (up to rounding), not the sum of the axes' lengths.
+    const double a = 0.7, b = -1.1;
+    const double rotateThenScale[4][4] = {{0.3 * std::cos(a), 0.3 * std::sin(a), 0, 0},
+                                          {-0.3 * std::cos(b) * std::sin(a), 0.3 * std::cos(b) * std::cos(a), 0.3 * std::sin(b), 0},
+                                          {0.3 * std::sin(b) * std::sin(a), -0.3 * std::sin(b) * std::cos(a), 0.3 * std::cos(b), 0},
+                                          {4, -2, 7, 1}};
+    EXPECT_NEAR(CapsuleOfUnitCylinder(rotateThenScale).radius, 0.3, 1e-10);
+    const double centre[3] = {1, 2, 3};
+    EXPECT_NEAR(CapsuleOfSphere(centre, 2, &rotateThenScale).radius, 0.6, 1e-10);
+    // Scaled unevenly, the widest axis counts.
+    const double uneven[4][4] = {{2, 0, 0, 0}, {0, 0.5, 0, 0}, {0, 0, 5, 0}, {0, 0, 0, 1}};
+    EXPECT_NEAR(CapsuleOfUnitCylinder(uneven).radius, 2, 1e-10);
+    EXPECT_NEAR(CapsuleOfSphere(centre, 1, &uneven).radius, 5, 1e-10);
 }
 
 }  // namespace

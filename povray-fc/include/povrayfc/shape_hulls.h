@@ -11,12 +11,12 @@ namespace povrayfc {
 using Matrix4 = double[4][4];
 
 // A cone or cylinder is the image, under its transform, of a shape inside the canonical
-// unit cylinder (radius 1, z in [0, 1]); that image lies within |m x| + |m y| (a bound of
-// the spectral norm on the cross-section) of the image of the axis.
+// unit cylinder (radius 1, z in [0, 1]); that image lies within the most m stretches the
+// cross-section (its spectral norm, bounded from above) of the image of the axis.
 Capsule CapsuleOfUnitCylinder(const Matrix4 &m);
 
 // A sphere of `radius` about `centre`; with a transform (an ellipsoid) it lies within
-// radius * (|m x| + |m y| + |m z|) of the transformed centre.
+// radius times the most m stretches a vector (bounded from above) of the transformed centre.
 Capsule CapsuleOfSphere(const double centre[3], double radius, const Matrix4 *m);
 
 }  // namespace povrayfc
