@@ -297,7 +297,14 @@ void AddUnits(Object object, std::uint64_t path, std::uint64_t pathGeometry, boo
 
 void AddUnits(Object item, SignatureBuilder &signature, std::vector<Object> &unitObjects)
 {
+    const std::size_t first = unitObjects.size();
     AddUnits(item, 0, 0, true, signature, unitObjects);
+    // The shadow loop asks the outermost object about any surface below it (a hit's Csg is
+    // the outermost CSG): where that is not opaque, the loop passes the surface and goes on
+    // from there, so every unit of the item may move a shadow test's origin.
+    if (!AllOpaque(item))
+        for (std::size_t i = first; i < unitObjects.size(); ++i)
+            signature.SetUnitTranslucent(unitObjects[i]->fcUnit);
 }
 
 bool Unbounded(Object object)

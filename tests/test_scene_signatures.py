@@ -28,7 +28,8 @@ class Frame:
 
     def __init__(self):
         self.items = []       # dicts: cls, hash, line, label, bounds (tuple or None), infinite, lights,
-                              # units (dicts: hash, geometry, bounds, infinite, opaque, cut_part)
+                              # units (dicts: hash, geometry, bounds, infinite, opaque, translucent,
+                              # cut_part)
         self.camera = self.lights = self.glob = None
         self.inexact = []
         self.object_count = None
@@ -68,7 +69,8 @@ def parse_listing(stderr):
             b = re.search(r"bounds=(\S+)", rest)
             frame.items[-1]["units"].append(dict(
                 hash=m.group(3), geometry=m.group(4), bounds=tuple(float(v) for v in b.group(1).split(",")) if b else None,
-                infinite=" infinite" in rest, opaque=" opaque" in rest, cut_part=" cut-part" in rest))
+                infinite=" infinite" in rest, opaque=" opaque" in rest, translucent=" translucent" in rest,
+                cut_part=" cut-part" in rest))
             continue
         m = SUMMARY.search(line)
         if m:
@@ -323,6 +325,25 @@ difference { // @bounded (a bounded_by: its box may be smaller than where its in
     # A part with bounded_by keeps the CSG one unit.
     (whole,) = f1.at(line_of(scene, "@bounded"))["units"]
     assert not whole["cut_part"]
+
+
+def test_a_shadow_test_may_pass_every_unit_of_an_item_that_is_not_opaque(tmp_path):
+    # POV-Ray's shadow loop asks the outermost object about a surface: where it lets light
+    # through, the loop goes on past every part of it, the opaque ones too.
+    scene = HEADER + """sphere { <0, 0, 0>, 1 pigment { rgb 1 } } // @stone
+sphere { <3, 0, 0>, 1 pigment { rgbf <1, 1, 1, 0.8> } } // @glass
+union { // @mixed
+  sphere { <6, 0, 0>, 1 pigment { rgb 1 } }
+  sphere { <8, 0, 0>, 1 pigment { rgbt <1, 1, 1, 0.5> } }
+}
+"""
+    f1, _ = signatures(tmp_path, scene)
+    (stone,) = f1.at(line_of(scene, "@stone"))["units"]
+    (glass,) = f1.at(line_of(scene, "@glass"))["units"]
+    opaque_part, clear_part = f1.at(line_of(scene, "@mixed"))["units"]
+    assert stone["opaque"] and not stone["translucent"]
+    assert glass["translucent"] and not glass["opaque"]
+    assert opaque_part["opaque"] and opaque_part["translucent"] and clear_part["translucent"]
 
 
 def test_mesh_vertex_moving_inside_unchanged_bounds(tmp_path):

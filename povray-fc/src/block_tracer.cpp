@@ -118,6 +118,30 @@ bool EndsOnChangedUnit(const StoredSample &s, BlockRecord &record, const FramePl
     return false;
 }
 
+// Whether one of the sample's shadow tests an opaque blocker answered may meet a changed
+// surface a shadow test passes (FramePlan::translucentChanges): the loop would go on past
+// it from a new origin, and whether it meets the blocker from there is decided in floating
+// point (ray_recording.h, ShadowSegmentRecord).
+bool BlockedTestMayMeet(const StoredSample &s, const BlockRecord &record, const ChangeIndex &translucent) {
+    // The units alone first: most samples have no such test.
+    const std::uint8_t *p = record.packed.data() + s.firstByte;
+    bool any = false;
+    for (std::uint32_t i = 0; i < s.segmentCount && !any; ++i) {
+        std::uint32_t unit;
+        p = NextPacked(p, unit);
+        any = unit != Segment::kNoUnit && (unit & Segment::kOpaqueBlocker);
+    }
+    if (!any) return false;
+    thread_local std::vector<Segment> segments;
+    thread_local std::vector<std::uint8_t> fans;
+    segments.clear();
+    fans.clear();
+    if (!record.Unpack(s, segments, fans)) return true;
+    for (const Segment &segment : segments)
+        if (!segment.HullTested() && translucent.MayMeet(segment)) return true;
+    return false;
+}
+
 // A clearance (>= 0, rounded down to a float whose low mantissa bits are cleared) and the
 // bundle classes it holds for, in one word (StoredSample::clearance).
 constexpr std::uint32_t kClassMask = (std::uint32_t(1) << BlockHulls::kClassBits) - 1;
@@ -178,6 +202,7 @@ bool BlockTracer::Begin(std::uint32_t serial, int left, int top, int right, int 
     // unit, the samples with a segment that ended on it.
     const bool orderMatters = plan.orderChanged && old_->hasOrderSensitive;
     const bool unitsChanged = plan.changedUnits != nullptr && (old_->unitMask & plan.changedUnitMask) != 0;
+    const bool translucentChanged = plan.translucentChanges != nullptr && !plan.translucentChanges->Empty();
     const bool nothingChanged =
         (plan.changes == nullptr || plan.changes->Empty()) && !orderMatters && !unitsChanged;
     if (nothingChanged) {
@@ -207,7 +232,8 @@ bool BlockTracer::Begin(std::uint32_t serial, int left, int top, int right, int 
     }
     const BlockHulls reach = FindBlockHulls(old_->fans, *plan.changes);
     bool anyDirty = false;
-    if (reach.Any() || old_->hasEverything || orderMatters || unitsChanged) {
+    // The cones hold no opaque blocker's test: a translucent change walks every sample.
+    if (reach.Any() || old_->hasEverything || orderMatters || unitsChanged || translucentChanged) {
         // The block's cones reach a change (or a sample depends on everything): narrow
         // it down to the groups of samples whose own cones reach it.
         groupReach_.resize(old_->groupFans.size());
@@ -223,7 +249,8 @@ bool BlockTracer::Begin(std::uint32_t serial, int left, int top, int right, int 
         for (std::size_t i = 0; i < n; ++i) {
             StoredSample &s = old_->samples[i];
             bool dirty = s.segmentCount == StoredSample::kEverything || (orderMatters && s.orderSensitive) ||
-                         (unitsChanged && EndsOnChangedUnit(s, *old_, plan));
+                         (unitsChanged && EndsOnChangedUnit(s, *old_, plan)) ||
+                         (translucentChanged && BlockedTestMayMeet(s, *old_, *plan.translucentChanges));
             if (!dirty && groupReaches_[s.group]) {
                 // Clean by what it kept, while the changes stay near where they were then and
                 // reach no class of its segments it did not test; else tested, keeping what

@@ -67,6 +67,7 @@ bool AddHull(const UnitSignature &unit, FrameChange &change) {
         return false;
     }
     change.hulls.push_back(UnitHull(unit));
+    if (unit.translucent) change.translucentHulls.push_back(change.hulls.back());
     return true;
 }
 

@@ -127,6 +127,28 @@ TEST(ChangeDetection, AMovedPartOfACsgIsTestedAtItsOldPlaceAndItsNew) {
     EXPECT_TRUE(Covers(gone.hulls, 5));
 }
 
+TEST(ChangeDetection, TheHullsOfWhatAShadowTestMayPassAreListedApart) {
+    // Invariant: every hull of a translucent unit is also a translucent hull (the tests
+    // opaque blockers answered meet them); no opaque unit's is.
+    UnitSignature glass = Unit(12, 120, 6), stone = Unit(14, 140, 9);
+    glass.translucent = true;
+    stone.opaque = true;
+    const SceneSignature a = Scene({Unit(10, 100, 0), Unit(11, 110, 5), Unit(13, 130, 8)});
+    const FrameChange c = CompareFrames(Frame(), a, Frame(), Scene({Unit(10, 100, 0), glass, stone}), false);
+    ASSERT_EQ(c.fullReason, "");
+    EXPECT_EQ(c.hulls.size(), 2u);
+    ASSERT_EQ(c.translucentHulls.size(), 1u);
+    EXPECT_TRUE(Covers(c.translucentHulls, 6));
+    EXPECT_FALSE(Covers(c.translucentHulls, 9));
+    // A part of a translucent CSG that moved: where it was, and where it is.
+    UnitSignature before = Part(11, 110, 5), after = Part(12, 120, 6);
+    before.translucent = after.translucent = true;
+    const FrameChange parts = CompareFrames(Frame(), Scene({Part(10, 100, 0), before}), Frame(),
+                                            Scene({Part(10, 100, 0), after}), false);
+    EXPECT_TRUE(Covers(parts.translucentHulls, 5));
+    EXPECT_TRUE(Covers(parts.translucentHulls, 6));
+}
+
 TEST(ChangeDetection, APartOfACsgRecolouredAloneIsTestedWhereItIs) {
     // Where another part has no texture, a point of it inside this one takes this one's
     // colour: a ray that ended on that part depends on it.

@@ -66,6 +66,7 @@ void FrameCoherence::BeginFrame(bool enabled, const FrameSetup &setup, const voi
     maskArea_[3] = setup.bottom;
     tracedMask_ = maskDir_.empty() ? DirtyMask() : DirtyMask(std::max(1, setup.width), std::max(1, setup.height));
     changes_ = ChangeIndex();
+    translucentChanges_ = ChangeIndex();
     plan_ = FramePlan();
     plan_.counters = &counters_;
     plan_.tracedMask = maskDir_.empty() ? nullptr : &tracedMask_;
@@ -171,6 +172,8 @@ void FrameCoherence::PlanFrame(const FrameSetup &setup, const SceneSignature &si
         current_.changedUnits = changedIds_.size();
         changes_ = ChangeIndex(std::move(change.hulls), setup.gridResolution);
         plan_.changes = &changes_;
+        translucentChanges_ = ChangeIndex(std::move(change.translucentHulls), setup.gridResolution);
+        plan_.translucentChanges = &translucentChanges_;
         blockers_ = std::move(change.blockers);
         plan_.blockers = &blockers_;
         plan_.orderChanged = change.orderChanged;

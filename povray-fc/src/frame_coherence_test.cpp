@@ -860,6 +860,95 @@ TEST_F(FrameCoherenceRun, AMovedOpaqueBallKeepsTheShadowsItStillCasts) {
     EXPECT_EQ(RenderShadowedBlock(8, BallScene(8, 1.5, 22, false), true), 16); // no longer opaque
 }
 
+// One 4x4 block: each sample a camera ray from (x, y, 0) ending on unit 1 at z = 5, and from
+// there a shadow test up +y over 50 that an opaque surface of unit 0 answers at 10; with
+// `pastGlass`, the test first passes unit 2 at 4 and the loop goes on from there, as POV-Ray's
+// shadow loop does.
+int RenderBlockedShadows(int frame, const SceneSignature &sig, bool pastGlass) {
+    FrameCoherence &fc = FrameCoherence::Get();
+    PublishSceneSignature(kScene, sig);
+    fc.BeginFrame(true, ToySetup(frame), kScene, {});
+    BlockTracer tracer(fc.Plan());
+    int traced = 0;
+    if (!tracer.Begin(0, 0, 0, kBlock - 1, kBlock - 1)) {
+        for (int y = 0; y < kBlock; ++y)
+            for (int x = 0; x < kBlock; ++x) {
+                float c[5] = {0, 0, 0, 0, 0};
+                if (tracer.Reuse(x, y, c)) continue;
+                tracer.BeginSample();
+                const double o[3] = {double(x), double(y), 0}, d[3] = {0, 0, 1};
+                RecordRaySegment(o, d, 5.0, 1);
+                {
+                    double p[3] = {double(x), double(y), 5}, depth = 50.0;
+                    const double up[3] = {0, 1, 0};
+                    ShadowSegmentRecord shadow(p, up, depth);
+                    double blocker = 10.0;
+                    if (pastGlass) {
+                        shadow.PassedAt(4.0, 2);
+                        depth -= 4.0;
+                        p[1] += 4.0;
+                        blocker -= 4.0;
+                    }
+                    shadow.BlockedAt(blocker, 0, true);
+                }
+                tracer.EndSample(x, y, c);
+                ++traced;
+            }
+        EndBlockInBlack(tracer);
+    }
+    fc.EndFrame(0);
+    return traced;
+}
+
+// Units: 0 the opaque blocker, 1 what the camera rays end on, 2 a glass pane under the
+// blocker, and maybe 3, a newcomer whose box is `newcomer`.
+SceneSignature BlockedShadowScene(std::uint64_t glassGeometry, const Box &glass, bool newcomerTranslucent,
+                                  const Box *newcomer) {
+    SceneSignature s = UnitsScene({1, 2, 100 + glassGeometry}, {11, 12, glassGeometry}, {0, 100, 0});
+    s.units[0].bounds = Box{Vec3{-1, 9, 4}, Vec3{5, 14, 6}};
+    s.units[0].opaque = true;
+    s.units[2].bounds = glass;
+    s.units[2].translucent = true;
+    if (newcomer != nullptr) {
+        UnitSignature u;
+        u.hash = u.geometry = 7000 + std::uint64_t(newcomerTranslucent);
+        u.bounds = *newcomer;
+        u.opaque = !newcomerTranslucent;
+        u.translucent = newcomerTranslucent;
+        s.units.push_back(u);
+        ObjectSignature o;
+        o.hash = u.hash;
+        s.objects.push_back(o);
+    }
+    return s;
+}
+
+TEST_F(FrameCoherenceRun, AShadowTestPastGlassToAnOpaqueBlockerDependsOnTheGlass) {
+    // Invariant: where POV-Ray's loop meets the blocker from depends on the glass it went on
+    // from, so a glass that moves dirties the tests that passed it, even when its new place is
+    // off their way.
+    const Box glass{Vec3{-1, 3, 4}, Vec3{5, 4.5, 6}}, away{Vec3{-1, 3, 40}, Vec3{5, 4.5, 42}};
+    EXPECT_EQ(RenderBlockedShadows(1, BlockedShadowScene(21, glass, false, nullptr), true), 16);
+    EXPECT_EQ(RenderBlockedShadows(2, BlockedShadowScene(21, glass, false, nullptr), true), 0);
+    EXPECT_EQ(RenderBlockedShadows(3, BlockedShadowScene(22, away, false, nullptr), true), 16);
+}
+
+TEST_F(FrameCoherenceRun, AnOpaqueBlockersTestMeetsWhatLetsLightThroughNotWhatIsOpaque) {
+    // Invariant: the loop goes on past a surface that lets light through from a new origin,
+    // so a test an opaque surface answered is dirty where such a newcomer crosses its way;
+    // an opaque newcomer there darkens it as well, and one off its way changes nothing.
+    const Box glass{Vec3{-1, 3, 40}, Vec3{5, 4.5, 42}};  // off every test's way
+    const Box across{Vec3{-1, 6, 4}, Vec3{5, 7, 6}}, aside{Vec3{20, 6, 4}, Vec3{21, 7, 6}};
+    EXPECT_EQ(RenderBlockedShadows(1, BlockedShadowScene(21, glass, false, nullptr), false), 16);
+    EXPECT_EQ(RenderBlockedShadows(2, BlockedShadowScene(21, glass, true, &across), false), 16);
+    SetUp();
+    EXPECT_EQ(RenderBlockedShadows(1, BlockedShadowScene(21, glass, false, nullptr), false), 16);
+    EXPECT_EQ(RenderBlockedShadows(2, BlockedShadowScene(21, glass, false, &across), false), 0);
+    SetUp();
+    EXPECT_EQ(RenderBlockedShadows(1, BlockedShadowScene(21, glass, false, nullptr), false), 16);
+    EXPECT_EQ(RenderBlockedShadows(2, BlockedShadowScene(21, glass, true, &aside), false), 0);
+}
+
 TEST_F(FrameCoherenceRun, ARecolouredOpaqueBlockerKeepsItsShadowsAndAGlassPaneDoesNot) {
     // Invariant: a shadow test an opaque surface answered is dark whatever its colour; one
     // that passed a transparent surface carries its colour.

@@ -141,7 +141,7 @@ TEST(ShadowBlockers, EveryRayTheSegmentStandsForCrossesTheBallWithinTheTolerance
 
 // A shadow test an opaque blocker answered is one segment, whatever transparent objects it
 // passed on its way there: from the loop's last origin, over the depth it looked up to.
-TEST(ShadowBlockers, AnOpaqueBlockersTestIsOneSegmentOverTheWholeDepth) {
+TEST(ShadowBlockers, AnOpaqueBlockersTestKeepsItsPiecesPastGlassAndOneSegmentOverTheRest) {
     std::vector<Segment> segments;
     std::vector<std::uint8_t> fanOf;
     std::vector<std::uint8_t> packed;
@@ -163,11 +163,16 @@ TEST(ShadowBlockers, AnOpaqueBlockersTestIsOneSegmentOverTheWholeDepth) {
         shadow.BlockedAt(5.0, 2, true);
     }
     StopRecordingRays();
-    ASSERT_EQ(recorder.Count(), 2u);
-    const Segment &blocked = segments[1];
+    // Where the loop met the blocker from hangs on the glass it went on from: that piece stays.
+    ASSERT_EQ(recorder.Count(), 3u);
+    const Segment &pane = segments[1];
+    EXPECT_EQ(pane.unit, 11u);
+    EXPECT_TRUE(pane.HullTested());
+    EXPECT_NEAR(pane.length, 10.0, 1e-4);
+    const Segment &blocked = segments[2];
     EXPECT_EQ(blocked.unit, 12u | Segment::kOpaqueBlocker);
     EXPECT_FALSE(blocked.HullTested());
-    EXPECT_EQ(blocked.origin[1], 10.0f);
+    EXPECT_NEAR(blocked.origin[1], 10.0, 1e-4);  // the pane's end, packed as such
     EXPECT_NEAR(blocked.length, 36.0, 1e-4);
     EXPECT_EQ(fanOf.size(), segments.size());
 }

@@ -91,6 +91,10 @@ void SignatureBuilder::SetUnitOpaque(std::uint32_t unit) {
     if (unit < signature_.units.size()) signature_.units[unit].opaque = true;
 }
 
+void SignatureBuilder::SetUnitTranslucent(std::uint32_t unit) {
+    if (unit < signature_.units.size()) signature_.units[unit].translucent = true;
+}
+
 void SignatureBuilder::SetUnitCutPart(std::uint32_t unit, std::uint32_t group) {
     if (unit >= signature_.units.size()) return;
     signature_.units[unit].cutPart = true;
@@ -199,6 +203,7 @@ std::string SignatureBuilder::DebugListing() const {
             AppendBounds(out, unit.infinite, unit.bounds);
             if (unit.containsCamera) out << " camera";
             if (unit.opaque) out << " opaque";
+            if (unit.translucent) out << " translucent";
             if (unit.cutPart) out << " cut-part";
             out << '\n';
         }

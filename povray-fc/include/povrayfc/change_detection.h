@@ -48,6 +48,10 @@ struct FrameChange {
     std::vector<Hull> hulls;
     static constexpr std::size_t kMaxBlockers = 256;
     std::vector<Blocker> blockers;
+    // Those of the hulls whose unit a shadow test may pass (UnitSignature::translucent): the
+    // tests opaque blockers answered are tested against them alone (README.md, "Opaque
+    // blockers").
+    std::vector<Hull> translucentHulls;
     // This frame's units (indices) that are unchanged parts of a merge, intersection or
     // difference another part of which changed shape (FramePlan::kUnitSiblingChanged).
     std::vector<std::uint32_t> partsBesideAChange;

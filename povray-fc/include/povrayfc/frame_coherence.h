@@ -73,6 +73,7 @@ class FrameCoherence {
 
     std::unique_ptr<SampleStore> store_;
     ChangeIndex changes_;
+    ChangeIndex translucentChanges_;  // FramePlan::translucentChanges
     std::vector<Blocker> blockers_;  // FramePlan::blockers
     ChangeDrift drift_;  // the changes of recent frames, for the clearances samples keep
     UnitIds unitIds_;

@@ -62,6 +62,9 @@ struct FramePlan {
     // The opaque balls among this frame's new shapes: a shadow test a changed unit's opaque
     // surface darkened holds while one of them crosses its way (shadow_blockers.h).
     const std::vector<Blocker> *blockers = nullptr;
+    // The changed hulls of units a shadow test may pass (FrameChange::translucentHulls):
+    // a test an opaque blocker answered is dirty where it meets one. Null or empty: none.
+    const ChangeIndex *translucentChanges = nullptr;
     // The ordered list of the scene's objects differs from the last frame's (something
     // changed, appeared, vanished or moved in it): the bounding tree may have another
     // shape, so every order-sensitive sample is dirty (tie_watch.h).

@@ -162,11 +162,15 @@ inline void RecordRaySegment(const double origin[3], const double direction[3], 
 // loop moves its ray's origin past each transparent object and shortens the remaining
 // depth by as much: this reads both where they live.
 //
-// An opaque blocker (OPAQUE_FLAG) darkens the light exactly, whatever lies before or
-// beyond it: the test is then one kOpaqueBlocker segment, from the loop's last origin over
-// the whole depth the test looked up to, and its pieces are dropped. It holds for as long
-// as that unit, or another opaque solid, still crosses it (shadow_blockers.h); nothing
-// else can change its answer, so no hull is tested against it.
+// An opaque blocker (OPAQUE_FLAG) darkens the light exactly, whatever opaque lies before
+// or beyond it: the test ends in one kOpaqueBlocker segment, from the loop's last origin
+// over the whole depth the test looked up to. It holds for as long as that unit, or
+// another opaque solid, still crosses it (shadow_blockers.h), and is tested only against
+// the hulls of what a shadow test may pass (FramePlan::translucentChanges): the loop goes
+// on past such a surface from a new origin, and whether the ray from there meets the
+// blocker is decided in floating point, near an edge either way. For the same reason the
+// pieces up to the transparent objects the test passed stay (each ends on its object); a
+// test that passed none keeps its one segment alone.
 // Costs one thread-local test when the thread is not recording.
 class ShadowSegmentRecord {
   public:
@@ -186,7 +190,7 @@ class ShadowSegmentRecord {
             recorder_->AddAimed(origin_, direction_, blocked_ ? blockedAt_ : depth_, aim_, blocker_);
             return;
         }
-        if (recorder_->Count() >= before_) recorder_->KeepFirst(before_);
+        if (!passed_ && recorder_->Count() >= before_) recorder_->KeepFirst(before_);
         recorder_->AddAimed(origin_, direction_, depth_ - projected_, aim_, blocker_, true);
     }
     ShadowSegmentRecord(const ShadowSegmentRecord &) = delete;
@@ -197,7 +201,9 @@ class ShadowSegmentRecord {
     // The test passed a transparent object (the frame's unit `unit`) at `distance` from the
     // current origin; before the loop moves its origin there.
     void PassedAt(double distance, std::uint32_t unit) {
-        if (recorder_) recorder_->AddAimed(origin_, direction_, distance, aim_, unit);
+        if (!recorder_) return;
+        recorder_->AddAimed(origin_, direction_, distance, aim_, unit);
+        passed_ = true;
     }
     // A blocker (unit `unit`) at `distance` from the current origin answered the test;
     // `opaque`: POV-Ray took the surface there for opaque without looking at its texture
@@ -221,6 +227,7 @@ class ShadowSegmentRecord {
     double blockedAt_ = 0.0;
     std::uint32_t blocker_ = kUnitNothing;
     bool opaque_ = false;
+    bool passed_ = false;  // PassedAt was called: the loop's origin moved
 };
 
 // Routes this thread's RecordRaySegment() calls into `recorder` until StopRecordingRays().

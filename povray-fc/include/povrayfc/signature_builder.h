@@ -57,6 +57,8 @@ public:
     void SetUnitContainsCamera(std::uint32_t unit);
     // Every object the unit is made of is opaque (UnitSignature::opaque).
     void SetUnitOpaque(std::uint32_t unit);
+    // A shadow test may pass the unit (UnitSignature::translucent).
+    void SetUnitTranslucent(std::uint32_t unit);
     // The unit is an opaque, shadow-casting ball (UnitSignature::ball).
     void SetUnitBall(std::uint32_t unit, const Vec3 &centre, double radius);
     // A new merge, intersection or difference whose parts are units (its number), and the
