@@ -90,23 +90,29 @@ bool AllOpaque(Object object)
     return true;
 }
 
-// A tighter hull than the box for the shapes whose boxes are loosest when slanted.
-bool CapsuleOf(Object object, Capsule &capsule)
+// A tighter hull than the box for the shapes whose boxes are loosest when slanted: the
+// capsules their solid lies in (into `capsules`, UnitSignature::kMaxCapsules at most); how
+// many, 0 for other shapes.
+int CapsulesOf(Object object, Capsule capsules[])
 {
     const pov::Cone *cone = dynamic_cast<const pov::Cone *>(object);
     if (cone != nullptr && cone->Trans != nullptr)
     {
-        capsule = CapsuleOfUnitCylinder(cone->Trans->matrix);
-        return true;
+        if (Test_Flag(cone, CYLINDER_FLAG))
+        {
+            capsules[0] = CapsuleOfUnitCylinder(cone->Trans->matrix);
+            return 1;
+        }
+        return CapsulesOfUnitCone(cone->Trans->matrix, cone->dist, capsules);
     }
     const pov::Sphere *sphere = dynamic_cast<const pov::Sphere *>(object);
     if (sphere != nullptr)
     {
         // a sphere gets a Trans exactly when it becomes an ellipsoid (Sphere::Scale, Transform)
-        capsule = CapsuleOfSphere(sphere->Center, sphere->Radius, (sphere->Trans != nullptr) ? &sphere->Trans->matrix : nullptr);
-        return true;
+        capsules[0] = CapsuleOfSphere(sphere->Center, sphere->Radius, (sphere->Trans != nullptr) ? &sphere->Trans->matrix : nullptr);
+        return 1;
     }
-    return false;
+    return 0;
 }
 
 // Nothing about the object keeps a shadow test that meets it from going dark there: it casts
@@ -235,10 +241,10 @@ void AddParts(Object object, std::uint64_t hash, std::uint64_t geometry, Signatu
         const std::uint32_t unit = signature.AddUnit(CombineHashes(CombineHashes(hash, place), WholeHash(part, false)),
                                                      CombineHashes(CombineHashes(geometry, place), WholeHash(part, true)),
                                                      lowerLeft, lengths, false);
-        // The solid of a sphere, cylinder or cone (inverted or not) lies in its capsule.
-        Capsule capsule;
-        if (dynamic_cast<CSG *>(part) == nullptr && CapsuleOf(part, capsule))
-            signature.SetUnitCapsule(unit, capsule);
+        // The solid of a sphere, cylinder or cone (inverted or not) lies in its capsules.
+        Capsule capsules[UnitSignature::kMaxCapsules];
+        if (dynamic_cast<CSG *>(part) == nullptr)
+            signature.SetUnitCapsules(unit, capsules, CapsulesOf(part, capsules));
         // The shadow tests an opaque part stops hold while no other part changes shape
         // (FramePlan::kUnitSiblingChanged); a part is never a ball.
         if (AllOpaque(part))
@@ -280,9 +286,9 @@ void AddUnits(Object object, std::uint64_t path, std::uint64_t pathGeometry, boo
     const std::uint64_t unitGeometry = csg ? CombineHashes(pathGeometry, WholeHash(object, true)) : geometry;
     const std::uint32_t unit = signature.AddUnit(unitHash, unitGeometry, object->BBox.Lower_Left,
                                                  object->BBox.Lengths, Unbounded(object));
-    Capsule capsule;
-    if (!csg && CapsuleOf(object, capsule))
-        signature.SetUnitCapsule(unit, capsule);
+    Capsule capsules[UnitSignature::kMaxCapsules];
+    if (!csg)
+        signature.SetUnitCapsules(unit, capsules, CapsulesOf(object, capsules));
     if (AllOpaque(object))
         signature.SetUnitOpaque(unit);
     Ball ball;

@@ -66,8 +66,12 @@ bool AddHull(const UnitSignature &unit, FrameChange &change) {
         change.hulls.clear();
         return false;
     }
-    change.hulls.push_back(UnitHull(unit));
-    if (unit.translucent) change.translucentHulls.push_back(change.hulls.back());
+    Hull hulls[UnitSignature::kMaxCapsules];
+    const int count = UnitHulls(unit, hulls);
+    for (int i = 0; i < count; ++i) {
+        change.hulls.push_back(hulls[i]);
+        if (unit.translucent) change.translucentHulls.push_back(hulls[i]);
+    }
     return true;
 }
 
@@ -92,8 +96,27 @@ void NoteReshapedCsgs(const SceneSignature &last, const SceneSignature &now,
 
 }  // namespace
 
-Hull UnitHull(const UnitSignature &unit) {
-    return unit.hasCapsule ? MakeHull(unit.bounds, unit.capsule) : MakeHull(unit.bounds);
+int UnitHulls(const UnitSignature &unit, Hull out[UnitSignature::kMaxCapsules]) {
+    if (unit.capsuleCount == 0) {
+        out[0] = MakeHull(unit.bounds);
+        return 1;
+    }
+    // One hull a capsule, its box the unit's clipped to the capsule's: a shape's part in a
+    // capsule lies in both.
+    int count = 0;
+    for (int i = 0; i < unit.capsuleCount; ++i) {
+        const Capsule &c = unit.capsules[i];
+        const Vec3 reach{c.radius, c.radius, c.radius};
+        Box box{Vec3{std::min(c.a.x, c.b.x), std::min(c.a.y, c.b.y), std::min(c.a.z, c.b.z)} - reach,
+                Vec3{std::max(c.a.x, c.b.x), std::max(c.a.y, c.b.y), std::max(c.a.z, c.b.z)} + reach};
+        for (int a = 0; a < 3; ++a) {
+            box.lo[a] = std::max(box.lo[a], unit.bounds.lo[a]);
+            box.hi[a] = std::min(box.hi[a], unit.bounds.hi[a]);
+        }
+        if (!box.Empty()) out[count++] = MakeHull(box, c);
+    }
+    if (count == 0) out[count++] = MakeHull(unit.bounds);  // rounding apart, never: stay safe
+    return count;
 }
 
 FrameChange CompareFrames(const FrameSetup &lastSetup, const SceneSignature &last, const FrameSetup &setup,

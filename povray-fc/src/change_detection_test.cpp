@@ -127,6 +127,31 @@ TEST(ChangeDetection, AMovedPartOfACsgIsTestedAtItsOldPlaceAndItsNew) {
     EXPECT_TRUE(Covers(gone.hulls, 5));
 }
 
+TEST(ChangeDetection, AUnitWithCapsulesIsAHullPerCapsuleWithinItsBox) {
+    // A cone's narrow half and its wide half, along x in a box from 0 to 10.
+    UnitSignature cone;
+    cone.bounds = Box{Vec3{0, 0, 0}, Vec3{10, 1, 1}};
+    cone.capsuleCount = 2;
+    cone.capsules[0] = Capsule{Vec3{0, 0.5, 0.5}, Vec3{5, 0.5, 0.5}, 0.25};
+    cone.capsules[1] = Capsule{Vec3{5, 0.5, 0.5}, Vec3{10, 0.5, 0.5}, 0.5};
+    Hull hulls[UnitSignature::kMaxCapsules];
+    ASSERT_EQ(UnitHulls(cone, hulls), 2);
+    // Invariant: each hull holds its capsule, and no more than the unit's box.
+    for (const Hull &h : hulls) {
+        EXPECT_TRUE(h.hasCapsule);
+        EXPECT_GE(h.box.lo.x, -0.01);
+        EXPECT_LE(h.box.hi.x, 10.01);
+    }
+    EXPECT_LE(hulls[0].box.hi.x, 5.26);
+    EXPECT_LE(hulls[0].box.hi.y, 0.76);
+    EXPECT_GE(hulls[1].box.lo.x, 4.49);
+    EXPECT_GE(hulls[1].box.hi.y, 0.99);
+    cone.capsuleCount = 0;
+    ASSERT_EQ(UnitHulls(cone, hulls), 1);
+    EXPECT_FALSE(hulls[0].hasCapsule);
+    EXPECT_GE(hulls[0].box.hi.x, 10.0);
+}
+
 TEST(ChangeDetection, TheHullsOfWhatAShadowTestMayPassAreListedApart) {
     // Invariant: every hull of a translucent unit is also a translucent hull (the tests
     // opaque blockers answered meet them); no opaque unit's is.

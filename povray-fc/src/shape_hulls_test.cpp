@@ -55,6 +55,48 @@ TEST(ShapeHulls, TransformedUnitCylinderLiesInItsCapsule) {
     }
 }
 
+TEST(ShapeHulls, TransformedUnitConeLiesInItsTwoCapsules) {
+    std::mt19937_64 rng(11);
+    std::uniform_real_distribution<double> u(0, 1), angle(0, 6.283185307179586);
+    for (int t = 0; t < 200; ++t) {
+        double m[4][4];
+        RandomTransform(rng, m);
+        const double dist = 0.9 * u(rng);
+        Capsule c[2];
+        ASSERT_EQ(CapsulesOfUnitCone(m, dist, c), 2);
+        for (int k = 0; k < 2000; ++k) {
+            // On the side: the points farthest from the axis at their height.
+            const double z = dist + (1.0 - dist) * u(rng), a = angle(rng);
+            const Vec3 p = Apply(m, Vec3{z * std::cos(a), z * std::sin(a), z});
+            // Invariant: every point of the cone is in one of its capsules.
+            ASSERT_TRUE(c[0].AxisDistance(p) <= c[0].radius * (1 + 1e-12) ||
+                        c[1].AxisDistance(p) <= c[1].radius * (1 + 1e-12))
+                << t << " " << k;
+        }
+    }
+    // The narrow half is thinner: a turned cone from a point (dist 0) of radius 2.
+    const double turned[4][4] = {{0, 2, 0, 0}, {-2, 0, 0, 0}, {0, 0, 5, 0}, {1, 1, 1, 1}};
+    Capsule c[2];
+    CapsulesOfUnitCone(turned, 0.0, c);
+    EXPECT_NEAR(c[0].radius, 1.0, 1e-10);
+    EXPECT_NEAR(c[1].radius, 2.0, 1e-10);
+}
+
+TEST(ShapeHulls, AStretchedEllipsoidGetsACapsuleAlongItsLongAxis) {
+    // Stretched three times along x, then turned: the capsule runs along the long axis and
+    // is as thin as the short ones.
+    const double a = 0.6, stretched[4][4] = {{3 * std::cos(a), 3 * std::sin(a), 0, 0},
+                                             {-std::sin(a), std::cos(a), 0, 0},
+                                             {0, 0, 1, 0},
+                                             {2, 0, 0, 1}};
+    const double centre[3] = {0, 0, 0};
+    const Capsule c = CapsuleOfSphere(centre, 0.5, &stretched);
+    EXPECT_NEAR(c.radius, 0.5, 1e-5);
+    const Vec3 axis = c.b - c.a;
+    EXPECT_NEAR(std::sqrt(axis.x * axis.x + axis.y * axis.y + axis.z * axis.z), 3.0, 1e-5);
+    EXPECT_NEAR(std::fabs(axis.x * std::cos(a) + axis.y * std::sin(a)), 3.0, 1e-5);
+}
+
 TEST(ShapeHulls, SphereAndEllipsoidLieInTheirCapsules) {
     std::mt19937_64 rng(10);
     std::uniform_real_distribution<double> u(-1, 1);
@@ -87,7 +129,10 @@ TEST(ShapeHulls, ARotatedAndScaledShapeGetsItsOwnRadius) {
     // Scaled unevenly, the widest axis counts.
     const double uneven[4][4] = {{2, 0, 0, 0}, {0, 0.5, 0, 0}, {0, 0, 5, 0}, {0, 0, 0, 1}};
     EXPECT_NEAR(CapsuleOfUnitCylinder(uneven).radius, 2, 1e-10);
-    EXPECT_NEAR(CapsuleOfSphere(centre, 1, &uneven).radius, 5, 1e-10);
+    // An ellipsoid that uneven runs along its longest axis, as thick as the next one.
+    const Capsule ellipsoid = CapsuleOfSphere(centre, 1, &uneven);
+    EXPECT_NEAR(ellipsoid.radius, 2, 1e-5);
+    EXPECT_NEAR(std::fabs(ellipsoid.b.z - ellipsoid.a.z), 10, 1e-5);
 }
 
 }  // namespace

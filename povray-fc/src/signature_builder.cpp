@@ -74,13 +74,13 @@ std::uint32_t SignatureBuilder::AddUnit(std::uint64_t hash, std::uint64_t geomet
     return std::uint32_t(signature_.units.size() - 1);
 }
 
-void SignatureBuilder::SetUnitCapsule(std::uint32_t unit, const Capsule &capsule) {
-    if (unit >= signature_.units.size()) return;
+void SignatureBuilder::SetUnitCapsules(std::uint32_t unit, const Capsule *capsules, int count) {
+    if (unit >= signature_.units.size() || count < 1 || count > UnitSignature::kMaxCapsules) return;
     UnitSignature &u = signature_.units[unit];
-    Capsule padded;
-    if (u.infinite || !PaddedCapsule(capsule, padded)) return;
-    u.hasCapsule = true;
-    u.capsule = padded;
+    if (u.infinite) return;
+    for (int i = 0; i < count; ++i)
+        if (!PaddedCapsule(capsules[i], u.capsules[i])) return;
+    u.capsuleCount = count;
 }
 
 void SignatureBuilder::SetUnitContainsCamera(std::uint32_t unit) {

@@ -245,11 +245,11 @@ TEST(SignatureBuilder, UnitCapsulesArePaddedAndInfiniteUnitsHaveNone) {
     c.a = povrayfc::Vec3{0, 0, 0};
     c.b = povrayfc::Vec3{0, 1, 0};
     c.radius = 0.5;
-    b.SetUnitCapsule(u, c);
+    b.SetUnitCapsules(u, &c, 1);
     const std::uint32_t w = b.AddUnit(3, 4, kLowerLeft, kLengths, true);
-    b.SetUnitCapsule(w, c);
-    ASSERT_TRUE(b.Unit(u).hasCapsule);
-    EXPECT_GT(b.Unit(u).capsule.radius, 0.5);   // float rounding of POV-Ray's own numbers
-    EXPECT_LT(b.Unit(u).capsule.radius, 0.51);
-    EXPECT_FALSE(b.Unit(w).hasCapsule);
+    b.SetUnitCapsules(w, &c, 1);
+    ASSERT_EQ(b.Unit(u).capsuleCount, 1);
+    EXPECT_GT(b.Unit(u).capsules[0].radius, 0.5);   // float rounding of POV-Ray's own numbers
+    EXPECT_LT(b.Unit(u).capsules[0].radius, 0.51);
+    EXPECT_EQ(b.Unit(w).capsuleCount, 0);
 }

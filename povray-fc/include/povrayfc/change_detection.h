@@ -66,8 +66,8 @@ struct FrameChange {
 FrameChange CompareFrames(const FrameSetup &lastSetup, const SceneSignature &last, const FrameSetup &setup,
                           const SceneSignature &now, bool photons);
 
-// The hull a unit's signature stands for.
-Hull UnitHull(const UnitSignature &unit);
+// The hulls a unit's signature stands for (one, or one a capsule) into `out`; returns how many.
+int UnitHulls(const UnitSignature &unit, Hull out[UnitSignature::kMaxCapsules]);
 
 }  // namespace povrayfc
 

@@ -46,9 +46,11 @@ struct UnitSignature {
     std::uint64_t geometry = 0;  // the same without appearance (texture, interior...)
     Box bounds;                  // world-space; ignored when infinite
     bool infinite = false;       // unbounded, inverted, or huge
-    // A tighter hull than `bounds` for spheres, cylinders and cones.
-    bool hasCapsule = false;
-    Capsule capsule;
+    // A tighter hull than `bounds` for spheres, cylinders and cones: every point of the unit
+    // lies in one of its first capsuleCount capsules (a cone's narrow half and its wide one).
+    static constexpr int kMaxCapsules = 2;
+    int capsuleCount = 0;
+    Capsule capsules[kMaxCapsules];
     // The camera is inside it (or, with focal blur, may be): camera rays start with it as
     // their medium, so a change of it reaches every camera ray.
     bool containsCamera = false;

@@ -15,8 +15,14 @@ using Matrix4 = double[4][4];
 // cross-section (its spectral norm, bounded from above) of the image of the axis.
 Capsule CapsuleOfUnitCylinder(const Matrix4 &m);
 
-// A sphere of `radius` about `centre`; with a transform (an ellipsoid) it lies within
-// radius times the most m stretches a vector (bounded from above) of the transformed centre.
+// A cone as POV-Ray keeps it: the image under m of x^2 + y^2 <= z^2, z in [dist, 1]. It lies
+// in two capsules (written to `out`; returns 2): the narrow half of its axis with the
+// radius at the middle, the wide half with the full radius.
+int CapsulesOfUnitCone(const Matrix4 &m, double dist, Capsule out[2]);
+
+// A sphere of `radius` about `centre`; with a transform (an ellipsoid) it lies in a capsule
+// along its longest axis (or, when it is nearly round, within radius times the most m
+// stretches a vector of the transformed centre).
 Capsule CapsuleOfSphere(const double centre[3], double radius, const Matrix4 *m);
 
 }  // namespace povrayfc

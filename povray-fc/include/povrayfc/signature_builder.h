@@ -51,8 +51,9 @@ public:
     std::uint32_t AddUnit(std::uint64_t hash, std::uint64_t geometry, const float lowerLeft[3],
                           const float lengths[3], bool unbounded);
     // After AddUnit, for a sphere, cylinder or cone: every point of the unit lies within
-    // `radius` of the world-space segment [a, b].
-    void SetUnitCapsule(std::uint32_t unit, const Capsule &capsule);
+    // the radius of one of the `count` capsules' world-space segments [a, b]
+    // (UnitSignature::kMaxCapsules at most).
+    void SetUnitCapsules(std::uint32_t unit, const Capsule *capsules, int count);
     // The camera may be inside the unit (set once the camera is known, before Finish).
     void SetUnitContainsCamera(std::uint32_t unit);
     // Every object the unit is made of is opaque (UnitSignature::opaque).
