@@ -90,7 +90,7 @@ bool AllOpaque(Object object)
     return true;
 }
 
-// A tighter hull than the box for the shapes whose boxes are loosest when slanted: the
+// A tighter hull than the box for the shapes whose boxes are loosest when turned: the
 // capsules their solid lies in (into `capsules`, UnitSignature::kMaxCapsules at most); how
 // many, 0 for other shapes.
 int CapsulesOf(Object object, Capsule capsules[])
@@ -104,6 +104,13 @@ int CapsulesOf(Object object, Capsule capsules[])
             return 1;
         }
         return CapsulesOfUnitCone(cone->Trans->matrix, cone->dist, capsules);
+    }
+    const pov::Box *box = dynamic_cast<const pov::Box *>(object);
+    if (box != nullptr && box->Trans != nullptr)
+    {
+        // a box without a Trans keeps its world bounds: its own box is exact
+        capsules[0] = CapsuleOfBox(box->bounds[0], box->bounds[1], box->Trans->matrix);
+        return 1;
     }
     const pov::Sphere *sphere = dynamic_cast<const pov::Sphere *>(object);
     if (sphere != nullptr)

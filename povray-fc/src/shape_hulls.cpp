@@ -59,6 +59,31 @@ int CapsulesOfUnitCone(const Matrix4 &m, double dist, Capsule out[2]) {
     return 2;
 }
 
+Capsule CapsuleOfBox(const double lo[3], const double hi[3], const Matrix4 &m) {
+    // A point of the box is its centre's image plus x h_0 m_0 + y h_1 m_1 + z h_2 m_2 with
+    // |x|, |y|, |z| <= 1 (h: the half extents, m_i: the rows). Along the longest edge's
+    // direction k that is the axis; across it the rest, whose length is largest at a corner
+    // of the cross-section (a convex function of (x, y) is, over a rectangle).
+    Vec3 edge[3];
+    double length[3];
+    for (int i = 0; i < 3; ++i) {
+        const double h = 0.5 * std::fabs(hi[i] - lo[i]);
+        edge[i] = Vec3{h * m[i][0], h * m[i][1], h * m[i][2]};
+        length[i] = std::sqrt(edge[i].x * edge[i].x + edge[i].y * edge[i].y + edge[i].z * edge[i].z);
+    }
+    const int k = length[0] >= length[1] ? (length[0] >= length[2] ? 0 : 2) : (length[1] >= length[2] ? 1 : 2);
+    const Vec3 u = edge[(k + 1) % 3], v = edge[(k + 2) % 3];
+    const Vec3 sum = u + v, difference = u - v;
+    const Vec3 centre = Point(m, Vec3{0.5 * (lo[0] + hi[0]), 0.5 * (lo[1] + hi[1]), 0.5 * (lo[2] + hi[2])});
+    Capsule c;
+    c.a = centre - edge[k];
+    c.b = centre + edge[k];
+    c.radius = std::max(std::sqrt(sum.x * sum.x + sum.y * sum.y + sum.z * sum.z),
+                        std::sqrt(difference.x * difference.x + difference.y * difference.y +
+                                  difference.z * difference.z)) * kRounding;
+    return c;
+}
+
 Capsule CapsuleOfSphere(const double centre[3], double radius, const Matrix4 *m) {
     Capsule c;
     const Vec3 p{centre[0], centre[1], centre[2]};

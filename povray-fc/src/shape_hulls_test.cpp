@@ -97,6 +97,34 @@ TEST(ShapeHulls, AStretchedEllipsoidGetsACapsuleAlongItsLongAxis) {
     EXPECT_NEAR(std::fabs(axis.x * std::cos(a) + axis.y * std::sin(a)), 3.0, 1e-5);
 }
 
+TEST(ShapeHulls, TransformedBoxLiesInItsCapsule) {
+    std::mt19937_64 rng(12);
+    std::uniform_real_distribution<double> u(-1, 1), side(0.05, 3);
+    for (int t = 0; t < 200; ++t) {
+        double m[4][4];
+        RandomTransform(rng, m);
+        const double lo[3] = {u(rng), u(rng), u(rng)};
+        const double hi[3] = {lo[0] + side(rng), lo[1] + side(rng), lo[2] + side(rng)};
+        const Capsule c = CapsuleOfBox(lo, hi, m);
+        for (int k = 0; k < 500; ++k) {
+            // On the surface, corners and edges included: a corner is where a radius too
+            // small fails first.
+            double q[3];
+            for (int i = 0; i < 3; ++i) q[i] = k < 8 ? ((k >> i) & 1 ? hi[i] : lo[i]) : lo[i] + (hi[i] - lo[i]) * (0.5 + 0.5 * u(rng));
+            if (k >= 8) q[k % 3] = u(rng) < 0 ? lo[k % 3] : hi[k % 3];
+            // Invariant: every point of the box is within the capsule's radius of its axis.
+            ASSERT_LE(c.AxisDistance(Apply(m, Vec3{q[0], q[1], q[2]})), c.radius * (1 + 1e-12)) << t << " " << k;
+        }
+    }
+    // A plank turned about z: a capsule along it, as thick as half its cross-section's diagonal.
+    const double a = 0.5, turned[4][4] = {{std::cos(a), std::sin(a), 0, 0}, {-std::sin(a), std::cos(a), 0, 0},
+                                          {0, 0, 1, 0}, {0, 0, 0, 1}};
+    const double lo[3] = {-2, -0.1, -0.2}, hi[3] = {2, 0.1, 0.2};
+    const Capsule plank = CapsuleOfBox(lo, hi, turned);
+    EXPECT_NEAR(plank.radius, std::sqrt(0.1 * 0.1 + 0.2 * 0.2), 1e-10);
+    EXPECT_NEAR(plank.b.x - plank.a.x, 4 * std::cos(a), 1e-10);
+}
+
 TEST(ShapeHulls, SphereAndEllipsoidLieInTheirCapsules) {
     std::mt19937_64 rng(10);
     std::uniform_real_distribution<double> u(-1, 1);

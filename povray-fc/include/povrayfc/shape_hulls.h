@@ -20,6 +20,10 @@ Capsule CapsuleOfUnitCylinder(const Matrix4 &m);
 // radius at the middle, the wide half with the full radius.
 int CapsulesOfUnitCone(const Matrix4 &m, double dist, Capsule out[2]);
 
+// A box from `lo` to `hi` under m (POV-Ray keeps a turned box so): a capsule through its
+// centre along its longest edge, as thick as its cross-section's farthest corner.
+Capsule CapsuleOfBox(const double lo[3], const double hi[3], const Matrix4 &m);
+
 // A sphere of `radius` about `centre`; with a transform (an ellipsoid) it lies in a capsule
 // along its longest axis (or, when it is nearly round, within radius times the most m
 // stretches a vector of the transformed centre).
