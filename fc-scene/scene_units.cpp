@@ -312,9 +312,12 @@ void AddUnits(Object item, SignatureBuilder &signature, std::vector<Object> &uni
 {
     const std::size_t first = unitObjects.size();
     AddUnits(item, 0, 0, true, signature, unitObjects);
-    // The shadow loop asks the outermost object about any surface below it (a hit's Csg is
-    // the outermost CSG): where that is not opaque, the loop passes the surface and goes on
-    // from there, so every unit of the item may move a shadow test's origin.
+    // A shadow test goes on past a surface that lets light through, from a new origin and
+    // with light left. A surface whose object is opaque clears the light for good (the loop
+    // may still go on, when the outermost CSG around it is not opaque: nothing after it
+    // lights the point again), so only an item with such a surface can change a test an
+    // opaque blocker answered further on. All its units count (more than needed: an opaque
+    // part of a union with glass darkens too).
     if (!AllOpaque(item))
         for (std::size_t i = first; i < unitObjects.size(); ++i)
             signature.SetUnitTranslucent(unitObjects[i]->fcUnit);

@@ -328,8 +328,9 @@ difference { // @bounded (a bounded_by: its box may be smaller than where its in
 
 
 def test_a_shadow_test_may_pass_every_unit_of_an_item_that_is_not_opaque(tmp_path):
-    # POV-Ray's shadow loop asks the outermost object about a surface: where it lets light
-    # through, the loop goes on past every part of it, the opaque ones too.
+    # A shadow test goes on past a surface that lets light through: every unit of an item
+    # with such a surface counts (its opaque parts too, more than needed); an opaque item's
+    # surfaces clear the light for good.
     scene = HEADER + """sphere { <0, 0, 0>, 1 pigment { rgb 1 } } // @stone
 sphere { <3, 0, 0>, 1 pigment { rgbf <1, 1, 1, 0.8> } } // @glass
 union { // @mixed

@@ -119,7 +119,7 @@ bool EndsOnChangedUnit(const StoredSample &s, BlockRecord &record, const FramePl
 }
 
 // Whether one of the sample's shadow tests an opaque blocker answered may meet a changed
-// surface a shadow test passes (FramePlan::translucentChanges): the loop would go on past
+// surface that lets light through (FramePlan::translucentChanges): the loop would go on past
 // it from a new origin, and whether it meets the blocker from there is decided in floating
 // point (ray_recording.h, ShadowSegmentRecord).
 bool BlockedTestMayMeet(const StoredSample &s, const BlockRecord &record, const ChangeIndex &translucent) {

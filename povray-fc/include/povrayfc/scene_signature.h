@@ -57,9 +57,9 @@ struct UnitSignature {
     // Every surface of it is opaque to shadow tests whatever its texture (POV-Ray's
     // OPAQUE_FLAG on each object it is made of).
     bool opaque = false;
-    // A shadow test may pass it: the object POV-Ray's shadow loop asks about a surface of it
-    // (the outermost object around it) is not opaque, so the loop goes on past it from a new
-    // origin (README.md, "Opaque blockers").
+    // A shadow test may pass it with light left: its top-level item has a surface that lets
+    // light through, and POV-Ray's shadow loop goes on past such a surface from a new origin
+    // (README.md, "Opaque blockers").
     bool translucent = false;
     // A ball inside it that darkens every shadow test crossing it (shadow_blockers.h).
     bool hasBall = false;
