@@ -1,4 +1,4 @@
-// Capsule hulls of cones, cylinders and spheres.
+// Capsule hulls of cones, cylinders, turned boxes, spheres and ellipsoids.
 #include "povrayfc/shape_hulls.h"
 
 #include <algorithm>

@@ -46,8 +46,9 @@ struct UnitSignature {
     std::uint64_t geometry = 0;  // the same without appearance (texture, interior...)
     Box bounds;                  // world-space; ignored when infinite
     bool infinite = false;       // unbounded, inverted, or huge
-    // A tighter hull than `bounds` for spheres, cylinders and cones: every point of the unit
-    // lies in one of its first capsuleCount capsules (a cone's narrow half and its wide one).
+    // A tighter hull than `bounds` for spheres, cylinders, cones and turned boxes: every point
+    // of the unit lies in one of its first capsuleCount capsules (a cone: its narrow half
+    // and its wide one).
     static constexpr int kMaxCapsules = 2;
     int capsuleCount = 0;
     Capsule capsules[kMaxCapsules];
