@@ -66,6 +66,19 @@ bool SampleIsDirty(const StoredSample &s, const BlockRecord &record, const Chang
     return false;
 }
 
+// Whether one of the sample's packed segments ended with a Segment::unit value `matches`
+// holds for (kNoUnit skipped), read without unpacking: most samples are ruled out so.
+template <class Matches>
+bool AnyPackedUnit(const StoredSample &s, const BlockRecord &record, Matches matches) {
+    const std::uint8_t *p = record.packed.data() + s.firstByte;
+    for (std::uint32_t i = 0; i < s.segmentCount; ++i) {
+        std::uint32_t unit;
+        p = NextPacked(p, unit);
+        if (unit != Segment::kNoUnit && matches(unit)) return true;
+    }
+    return false;
+}
+
 // Whether one of the sample's segments ended on a unit that changed or vanished this frame.
 // (FramePlan::changedUnits by id. A shadow test an opaque surface answered holds while
 // that unit keeps its shape and stays opaque, or while one of the frame's new opaque
@@ -74,16 +87,11 @@ bool SampleIsDirty(const StoredSample &s, const BlockRecord &record, const Chang
 bool EndsOnChangedUnit(const StoredSample &s, BlockRecord &record, const FramePlan &plan) {
     const std::vector<std::uint8_t> &changed = *plan.changedUnits;
     // The units alone first: most samples ended on none that changed.
-    const std::uint8_t *p = record.packed.data() + s.firstByte;
-    bool any = false;
-    for (std::uint32_t i = 0; i < s.segmentCount && !any; ++i) {
-        std::uint32_t unit;
-        p = NextPacked(p, unit);
-        if (unit == Segment::kNoUnit) continue;
-        const std::uint32_t id = unit & ~Segment::kOpaqueBlocker;
-        any = id < changed.size() && changed[id] != FramePlan::kUnitKept;
-    }
-    if (!any) return false;
+    if (!AnyPackedUnit(s, record, [&changed](std::uint32_t unit) {
+            const std::uint32_t id = unit & ~Segment::kOpaqueBlocker;
+            return id < changed.size() && changed[id] != FramePlan::kUnitKept;
+        }))
+        return false;
     thread_local std::vector<Segment> segments;
     thread_local std::vector<std::uint8_t> fans;
     thread_local std::vector<std::uint32_t> headers;
@@ -124,14 +132,8 @@ bool EndsOnChangedUnit(const StoredSample &s, BlockRecord &record, const FramePl
 // point (ray_recording.h, ShadowSegmentRecord).
 bool BlockedTestMayMeet(const StoredSample &s, const BlockRecord &record, const ChangeIndex &translucent) {
     // The units alone first: most samples have no such test.
-    const std::uint8_t *p = record.packed.data() + s.firstByte;
-    bool any = false;
-    for (std::uint32_t i = 0; i < s.segmentCount && !any; ++i) {
-        std::uint32_t unit;
-        p = NextPacked(p, unit);
-        any = unit != Segment::kNoUnit && (unit & Segment::kOpaqueBlocker);
-    }
-    if (!any) return false;
+    if (!AnyPackedUnit(s, record, [](std::uint32_t unit) { return (unit & Segment::kOpaqueBlocker) != 0; }))
+        return false;
     thread_local std::vector<Segment> segments;
     thread_local std::vector<std::uint8_t> fans;
     segments.clear();

@@ -107,12 +107,7 @@ int UnitHulls(const UnitSignature &unit, Hull out[UnitSignature::kMaxCapsules]) 
     for (int i = 0; i < unit.capsuleCount; ++i) {
         const Capsule &c = unit.capsules[i];
         const Vec3 reach{c.radius, c.radius, c.radius};
-        Box box{Vec3{std::min(c.a.x, c.b.x), std::min(c.a.y, c.b.y), std::min(c.a.z, c.b.z)} - reach,
-                Vec3{std::max(c.a.x, c.b.x), std::max(c.a.y, c.b.y), std::max(c.a.z, c.b.z)} + reach};
-        for (int a = 0; a < 3; ++a) {
-            box.lo[a] = std::max(box.lo[a], unit.bounds.lo[a]);
-            box.hi[a] = std::min(box.hi[a], unit.bounds.hi[a]);
-        }
+        const Box box = Intersection(unit.bounds, Box{Min(c.a, c.b) - reach, Max(c.a, c.b) + reach});
         if (!box.Empty()) out[count++] = MakeHull(box, c);
     }
     if (count == 0) out[count++] = MakeHull(unit.bounds);  // rounding apart, never: stay safe

@@ -796,9 +796,17 @@ TEST_F(FrameCoherenceRun, AMovedUnitIsMetAtItsNewPlaceNotAtItsOld) {
 namespace povrayfc {
 namespace {
 
-// One 4x4 block: each sample a camera ray ending on unit 1 and, from there, a shadow test
-// that unit 0 (an opaque blocker, or a glass pane passed) answered.
-int RenderShadowedBlock(int frame, const SceneSignature &sig, bool opaqueBlocker) {
+// How the shadow tests of RenderShadowedBlock end.
+enum class ShadowWay {
+    kPane,          // they pass unit 0, a glass pane, at 10 and reach the light
+    kBlocked,       // unit 0's opaque surface answers them at 10
+    kPaneThenBlocked,  // they pass unit 2 at 4 and the loop goes on from there, as POV-Ray's
+                       // shadow loop does, to unit 0's opaque surface at 10
+};
+
+// One 4x4 block: each sample a camera ray from (x, y, 0) ending on unit 1 at z = 5 and, from
+// there, a shadow test up +y over 50 that ends the `way` says.
+int RenderShadowedBlock(int frame, const SceneSignature &sig, ShadowWay way) {
     FrameCoherence &fc = FrameCoherence::Get();
     PublishSceneSignature(kScene, sig);
     fc.BeginFrame(true, ToySetup(frame), kScene, {});
@@ -813,13 +821,20 @@ int RenderShadowedBlock(int frame, const SceneSignature &sig, bool opaqueBlocker
                 const double o[3] = {double(x), double(y), 0}, d[3] = {0, 0, 1};
                 RecordRaySegment(o, d, 5.0, 1);
                 {
-                    const double p[3] = {double(x), double(y), 5}, up[3] = {0, 1, 0};
-                    const double depth = 50.0;
+                    double p[3] = {double(x), double(y), 5}, depth = 50.0;
+                    const double up[3] = {0, 1, 0};
                     ShadowSegmentRecord shadow(p, up, depth);  // recorded when it goes
-                    if (opaqueBlocker)
-                        shadow.BlockedAt(10.0, 0, true);
-                    else
+                    double blocker = 10.0;
+                    if (way == ShadowWay::kPaneThenBlocked) {
+                        shadow.PassedAt(4.0, 2);
+                        depth -= 4.0;
+                        p[1] += 4.0;
+                        blocker -= 4.0;
+                    }
+                    if (way == ShadowWay::kPane)
                         shadow.PassedAt(10.0, 0);
+                    else
+                        shadow.BlockedAt(blocker, 0, true);
                 }
                 tracer.EndSample(x, y, c);
                 ++traced;
@@ -850,54 +865,14 @@ SceneSignature BallScene(std::uint64_t hash, double x, double y, bool ball) {
 TEST_F(FrameCoherenceRun, AMovedOpaqueBallKeepsTheShadowsItStillCasts) {
     // Invariant: a shadow test an opaque surface darkened stays dark while an opaque ball of
     // the new frame crosses its whole way; the shadow tests run up from y = 0..3 over 50.
-    EXPECT_EQ(RenderShadowedBlock(1, BallScene(1, 1.5, 20, true), true), 16);
-    EXPECT_EQ(RenderShadowedBlock(2, BallScene(2, 1.5, 23, true), true), 0);   // moved along the way
-    EXPECT_EQ(RenderShadowedBlock(3, BallScene(3, 4.0, 23, true), true), 0);   // and aside, still across
-    EXPECT_EQ(RenderShadowedBlock(4, BallScene(4, 9.0, 23, true), true), 16);  // off their way
-    EXPECT_EQ(RenderShadowedBlock(5, BallScene(5, 1.5, 20, true), true), 0);
-    EXPECT_EQ(RenderShadowedBlock(6, BallScene(6, 1.5, 52, true), true), 16);  // past the light
-    EXPECT_EQ(RenderShadowedBlock(7, BallScene(7, 1.5, 20, true), true), 0);
-    EXPECT_EQ(RenderShadowedBlock(8, BallScene(8, 1.5, 22, false), true), 16); // no longer opaque
-}
-
-// One 4x4 block: each sample a camera ray from (x, y, 0) ending on unit 1 at z = 5, and from
-// there a shadow test up +y over 50 that an opaque surface of unit 0 answers at 10; with
-// `pastGlass`, the test first passes unit 2 at 4 and the loop goes on from there, as POV-Ray's
-// shadow loop does.
-int RenderBlockedShadows(int frame, const SceneSignature &sig, bool pastGlass) {
-    FrameCoherence &fc = FrameCoherence::Get();
-    PublishSceneSignature(kScene, sig);
-    fc.BeginFrame(true, ToySetup(frame), kScene, {});
-    BlockTracer tracer(fc.Plan());
-    int traced = 0;
-    if (!tracer.Begin(0, 0, 0, kBlock - 1, kBlock - 1)) {
-        for (int y = 0; y < kBlock; ++y)
-            for (int x = 0; x < kBlock; ++x) {
-                float c[5] = {0, 0, 0, 0, 0};
-                if (tracer.Reuse(x, y, c)) continue;
-                tracer.BeginSample();
-                const double o[3] = {double(x), double(y), 0}, d[3] = {0, 0, 1};
-                RecordRaySegment(o, d, 5.0, 1);
-                {
-                    double p[3] = {double(x), double(y), 5}, depth = 50.0;
-                    const double up[3] = {0, 1, 0};
-                    ShadowSegmentRecord shadow(p, up, depth);
-                    double blocker = 10.0;
-                    if (pastGlass) {
-                        shadow.PassedAt(4.0, 2);
-                        depth -= 4.0;
-                        p[1] += 4.0;
-                        blocker -= 4.0;
-                    }
-                    shadow.BlockedAt(blocker, 0, true);
-                }
-                tracer.EndSample(x, y, c);
-                ++traced;
-            }
-        EndBlockInBlack(tracer);
-    }
-    fc.EndFrame(0);
-    return traced;
+    EXPECT_EQ(RenderShadowedBlock(1, BallScene(1, 1.5, 20, true), ShadowWay::kBlocked), 16);
+    EXPECT_EQ(RenderShadowedBlock(2, BallScene(2, 1.5, 23, true), ShadowWay::kBlocked), 0);   // moved along the way
+    EXPECT_EQ(RenderShadowedBlock(3, BallScene(3, 4.0, 23, true), ShadowWay::kBlocked), 0);   // and aside, still across
+    EXPECT_EQ(RenderShadowedBlock(4, BallScene(4, 9.0, 23, true), ShadowWay::kBlocked), 16);  // off their way
+    EXPECT_EQ(RenderShadowedBlock(5, BallScene(5, 1.5, 20, true), ShadowWay::kBlocked), 0);
+    EXPECT_EQ(RenderShadowedBlock(6, BallScene(6, 1.5, 52, true), ShadowWay::kBlocked), 16);  // past the light
+    EXPECT_EQ(RenderShadowedBlock(7, BallScene(7, 1.5, 20, true), ShadowWay::kBlocked), 0);
+    EXPECT_EQ(RenderShadowedBlock(8, BallScene(8, 1.5, 22, false), ShadowWay::kBlocked), 16); // no longer opaque
 }
 
 // Units: 0 the opaque blocker, 1 what the camera rays end on, 2 a glass pane under the
@@ -928,9 +903,9 @@ TEST_F(FrameCoherenceRun, AShadowTestPastGlassToAnOpaqueBlockerDependsOnTheGlass
     // from, so a glass that moves dirties the tests that passed it, even when its new place is
     // off their way.
     const Box glass{Vec3{-1, 3, 4}, Vec3{5, 4.5, 6}}, away{Vec3{-1, 3, 40}, Vec3{5, 4.5, 42}};
-    EXPECT_EQ(RenderBlockedShadows(1, BlockedShadowScene(21, glass, false, nullptr), true), 16);
-    EXPECT_EQ(RenderBlockedShadows(2, BlockedShadowScene(21, glass, false, nullptr), true), 0);
-    EXPECT_EQ(RenderBlockedShadows(3, BlockedShadowScene(22, away, false, nullptr), true), 16);
+    EXPECT_EQ(RenderShadowedBlock(1, BlockedShadowScene(21, glass, false, nullptr), ShadowWay::kPaneThenBlocked), 16);
+    EXPECT_EQ(RenderShadowedBlock(2, BlockedShadowScene(21, glass, false, nullptr), ShadowWay::kPaneThenBlocked), 0);
+    EXPECT_EQ(RenderShadowedBlock(3, BlockedShadowScene(22, away, false, nullptr), ShadowWay::kPaneThenBlocked), 16);
 }
 
 TEST_F(FrameCoherenceRun, AnOpaqueBlockersTestMeetsWhatLetsLightThroughNotWhatIsOpaque) {
@@ -939,25 +914,25 @@ TEST_F(FrameCoherenceRun, AnOpaqueBlockersTestMeetsWhatLetsLightThroughNotWhatIs
     // an opaque newcomer there darkens it as well, and one off its way changes nothing.
     const Box glass{Vec3{-1, 3, 40}, Vec3{5, 4.5, 42}};  // off every test's way
     const Box across{Vec3{-1, 6, 4}, Vec3{5, 7, 6}}, aside{Vec3{20, 6, 4}, Vec3{21, 7, 6}};
-    EXPECT_EQ(RenderBlockedShadows(1, BlockedShadowScene(21, glass, false, nullptr), false), 16);
-    EXPECT_EQ(RenderBlockedShadows(2, BlockedShadowScene(21, glass, true, &across), false), 16);
+    EXPECT_EQ(RenderShadowedBlock(1, BlockedShadowScene(21, glass, false, nullptr), ShadowWay::kBlocked), 16);
+    EXPECT_EQ(RenderShadowedBlock(2, BlockedShadowScene(21, glass, true, &across), ShadowWay::kBlocked), 16);
     SetUp();
-    EXPECT_EQ(RenderBlockedShadows(1, BlockedShadowScene(21, glass, false, nullptr), false), 16);
-    EXPECT_EQ(RenderBlockedShadows(2, BlockedShadowScene(21, glass, false, &across), false), 0);
+    EXPECT_EQ(RenderShadowedBlock(1, BlockedShadowScene(21, glass, false, nullptr), ShadowWay::kBlocked), 16);
+    EXPECT_EQ(RenderShadowedBlock(2, BlockedShadowScene(21, glass, false, &across), ShadowWay::kBlocked), 0);
     SetUp();
-    EXPECT_EQ(RenderBlockedShadows(1, BlockedShadowScene(21, glass, false, nullptr), false), 16);
-    EXPECT_EQ(RenderBlockedShadows(2, BlockedShadowScene(21, glass, true, &aside), false), 0);
+    EXPECT_EQ(RenderShadowedBlock(1, BlockedShadowScene(21, glass, false, nullptr), ShadowWay::kBlocked), 16);
+    EXPECT_EQ(RenderShadowedBlock(2, BlockedShadowScene(21, glass, true, &aside), ShadowWay::kBlocked), 0);
 }
 
 TEST_F(FrameCoherenceRun, ARecolouredOpaqueBlockerKeepsItsShadowsAndAGlassPaneDoesNot) {
     // Invariant: a shadow test an opaque surface answered is dark whatever its colour; one
     // that passed a transparent surface carries its colour.
-    EXPECT_EQ(RenderShadowedBlock(1, BlockerScene(1, true), true), 16);
-    EXPECT_EQ(RenderShadowedBlock(2, BlockerScene(3, true), true), 0);   // recoloured, still opaque
-    EXPECT_EQ(RenderShadowedBlock(3, BlockerScene(4, false), true), 16); // now it lets light through
+    EXPECT_EQ(RenderShadowedBlock(1, BlockerScene(1, true), ShadowWay::kBlocked), 16);
+    EXPECT_EQ(RenderShadowedBlock(2, BlockerScene(3, true), ShadowWay::kBlocked), 0);   // recoloured, still opaque
+    EXPECT_EQ(RenderShadowedBlock(3, BlockerScene(4, false), ShadowWay::kBlocked), 16); // now it lets light through
     SetUp();
-    EXPECT_EQ(RenderShadowedBlock(1, BlockerScene(1, true), false), 16);
-    EXPECT_EQ(RenderShadowedBlock(2, BlockerScene(3, true), false), 16);  // the light passed it
+    EXPECT_EQ(RenderShadowedBlock(1, BlockerScene(1, true), ShadowWay::kPane), 16);
+    EXPECT_EQ(RenderShadowedBlock(2, BlockerScene(3, true), ShadowWay::kPane), 16);  // the light passed it
 }
 
 }  // namespace

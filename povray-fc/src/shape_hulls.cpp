@@ -14,6 +14,8 @@ Vec3 Point(const Matrix4 &m, const Vec3 &v) {
     return r;
 }
 
+double Length(const Vec3 &v) { return std::sqrt(v.x * v.x + v.y * v.y + v.z * v.z); }
+
 // The largest eigenvalue of the symmetric g is no more than any of its rows' sums of
 // absolute values (Gershgorin): exact for a diagonal g.
 double GershgorinBound(const double g[3][3], int n) {
@@ -69,18 +71,15 @@ Capsule CapsuleOfBox(const double lo[3], const double hi[3], const Matrix4 &m) {
     for (int i = 0; i < 3; ++i) {
         const double h = 0.5 * std::fabs(hi[i] - lo[i]);
         edge[i] = Vec3{h * m[i][0], h * m[i][1], h * m[i][2]};
-        length[i] = std::sqrt(edge[i].x * edge[i].x + edge[i].y * edge[i].y + edge[i].z * edge[i].z);
+        length[i] = Length(edge[i]);
     }
     const int k = length[0] >= length[1] ? (length[0] >= length[2] ? 0 : 2) : (length[1] >= length[2] ? 1 : 2);
     const Vec3 u = edge[(k + 1) % 3], v = edge[(k + 2) % 3];
-    const Vec3 sum = u + v, difference = u - v;
     const Vec3 centre = Point(m, Vec3{0.5 * (lo[0] + hi[0]), 0.5 * (lo[1] + hi[1]), 0.5 * (lo[2] + hi[2])});
     Capsule c;
     c.a = centre - edge[k];
     c.b = centre + edge[k];
-    c.radius = std::max(std::sqrt(sum.x * sum.x + sum.y * sum.y + sum.z * sum.z),
-                        std::sqrt(difference.x * difference.x + difference.y * difference.y +
-                                  difference.z * difference.z)) * kRounding;
+    c.radius = std::max(Length(u + v), Length(u - v)) * kRounding;
     return c;
 }
 
