@@ -106,7 +106,7 @@ bool Renderer::can_take(int frame) const
     return true;
 }
 
-bool Renderer::submit(int frame, const std::vector<Rect> &rects, std::string &err)
+bool Renderer::submit(int frame, const std::vector<Rect> &rects, RendererFailure &failure)
 {
     std::string line = render_control_line(frame, rects);
     const char *p = line.data();
@@ -115,8 +115,17 @@ bool Renderer::submit(int frame, const std::vector<Rect> &rects, std::string &er
         ssize_t n = write(control_, p, left);
         if (n < 0 && errno == EINTR)
             continue;
-        if (n <= 0)
-            return sys_fail(err, "write to the renderer's frame control");
+        if (n <= 0) {
+            // The pipe broke because the process ended before pump() saw it: say why it
+            // did (a kill, a crash), not only that the pipe broke.
+            std::string err;
+            sys_fail(err, "write to the renderer's frame control");
+            frame_ = frame;
+            collect_exit(true, failure);
+            if (failure.message.empty())
+                failure.message = err;
+            return false;
+        }
         p += n;
         left -= size_t(n);
     }
@@ -242,7 +251,12 @@ bool Renderer::pump(std::vector<FrameRecord> &done, RendererFailure &failure)
     }
     if (channel_open && child_.fd >= 0)
         return true;
-    // Console or channel closed: the process is ending; collect its status.
+    // Console or channel closed: the process is ending.
+    return collect_exit(state_ == Busy, failure);
+}
+
+bool Renderer::collect_exit(bool busy, RendererFailure &failure)
+{
     int status = 0;
     if (!wait_child(child_, 30, status)) {
         kill_child(child_);
@@ -259,14 +273,12 @@ bool Renderer::pump(std::vector<FrameRecord> &done, RendererFailure &failure)
                 tail_.pop_front();
         }
     }
-    State was = state_;
     kill();
-    debug_log("renderer exited: %s, %s", describe_status(status).c_str(),
-              was == Busy ? "busy" : "waiting");
-    if (was == Busy || !(WIFEXITED(status) && WEXITSTATUS(status) == 0)) {
+    debug_log("renderer exited: %s, %s", describe_status(status).c_str(), busy ? "busy" : "waiting");
+    if (busy || !(WIFEXITED(status) && WEXITSTATUS(status) == 0)) {
         classify_exit(status, failure);
         // A process that ends cleanly while waiting passed its last frame: not a failure.
-        return was != Busy && WIFEXITED(status) && WEXITSTATUS(status) == 0;
+        return !busy && WIFEXITED(status) && WEXITSTATUS(status) == 0;
     }
     return true;
 }

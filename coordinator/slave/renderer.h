@@ -61,8 +61,9 @@ public:
     // Whether this process can render frame `frame` (over any rectangles) without starting over.
     bool can_take(int frame) const;
 
-    // Ask the waiting process to render frame over rects (can_take must hold).
-    bool submit(int frame, const std::vector<Rect> &rects, std::string &err);
+    // Ask the waiting process to render frame over rects (can_take must hold). False when it
+    // has ended meanwhile: `failure` says why, as pump() would (killed, crashed...).
+    bool submit(int frame, const std::vector<Rect> &rects, RendererFailure &failure);
 
     // File descriptors to poll for input: the channel, and the console while it is chatty
     // (pump reads it whatever woke the caller).
@@ -86,6 +87,9 @@ public:
 private:
     bool fail(RendererFailure &failure, bool scene_error, int status, const std::string &msg);
     void classify_exit(int status, RendererFailure &failure);
+    // The process has ended (its console, channel or control pipe closed): reap it, keep its
+    // last console lines, and say whether it failed (into `failure`); `busy`: it had a frame.
+    bool collect_exit(bool busy, RendererFailure &failure);
 
     RendererConfig config_;
     Child child_;                       // console output on child_.fd

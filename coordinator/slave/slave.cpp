@@ -239,13 +239,11 @@ void Slave::feed_renderer()
             }
             renderer_threads_ = j.threads;
         }
-        std::string err;
         current_ = j;
         queue_.pop_front();
-        if (!renderer_.submit(current_.frame, current_.rects, err)) {
+        RendererFailure f;
+        if (!renderer_.submit(current_.frame, current_.rects, f)) {
             // The process died before it read the job (pump() had not seen it end yet).
-            RendererFailure f;
-            f.message = err;
             renderer_.kill();
             fail(current_, f);
             continue;
