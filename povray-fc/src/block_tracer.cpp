@@ -122,6 +122,7 @@ bool EndsOnChangedUnit(const StoredSample &s, BlockRecord &record, const FramePl
         // Too large an id for the width the segment was packed with: traced again.
         if (!RewritePackedUnit(record.packed.data() + headers[i], id | Segment::kOpaqueBlocker)) return true;
         record.unitMask |= UnitMaskBit(id);
+        record.groupIndex.unitMask[s.group] |= UnitMaskBit(id);
     }
     return false;
 }
@@ -234,7 +235,8 @@ bool BlockTracer::Begin(std::uint32_t serial, int left, int top, int right, int 
     }
     const BlockHulls reach = FindBlockHulls(old_->fans, *plan.changes);
     bool anyDirty = false;
-    // The cones hold no opaque blocker's test: a translucent change walks every sample.
+    // The cones hold no opaque blocker's test: a translucent change walks every group
+    // that has one.
     if (reach.Any() || old_->hasEverything || orderMatters || unitsChanged || translucentChanged) {
         // The block's cones reach a change (or a sample depends on everything): narrow
         // it down to the groups of samples whose own cones reach it.
@@ -246,33 +248,44 @@ bool BlockTracer::Begin(std::uint32_t serial, int left, int top, int right, int 
         }
         groupClasses_.resize(old_->groupFans.size());
         for (std::size_t g = 0; g < groupReach_.size(); ++g) groupClasses_[g] = groupReach_[g].ReachedClasses();
-        oldDirty_.resize(n);
+        // Group by group, passing over those nothing of this frame concerns (group_index.h).
+        const GroupIndex &index = old_->groupIndex;
+        oldDirty_.assign(n, 0);
         std::uint64_t tested = 0, cleared = 0;
-        for (std::size_t i = 0; i < n; ++i) {
-            StoredSample &s = old_->samples[i];
-            bool dirty = s.segmentCount == StoredSample::kEverything || (orderMatters && s.orderSensitive) ||
-                         (unitsChanged && EndsOnChangedUnit(s, *old_, plan)) ||
-                         (translucentChanged && BlockedTestMayMeet(s, *old_, *plan.translucentChanges));
-            if (!dirty && groupReaches_[s.group]) {
-                // Clean by what it kept, while the changes stay near where they were then and
-                // reach no class of its segments it did not test; else tested, keeping what
-                // it finds.
-                if ((groupClasses_[s.group] & ~s.clearance & kClassMask) == 0 && plan.drift &&
-                    plan.drift->Since(s.clearStamp) < ClearanceOf(s.clearance)) {
-                    ++cleared;
-                } else {
-                    ++tested;
-                    double clearance;
-                    std::uint32_t untested;
-                    dirty = SampleIsDirty(s, *old_, *plan.changes, groupReach_[s.group], clearance, untested);
-                    if (!dirty && plan.changeStamp != 0 && clearance > 0.0) {
-                        s.clearStamp = plan.changeStamp;
-                        s.clearance = PackClearance(clearance, ~untested);
+        for (std::size_t g = 0; g < groupReach_.size(); ++g) {
+            const std::uint8_t flags = index.flags[g];
+            const bool everything = (flags & GroupIndex::kEverything) != 0;
+            const bool order = orderMatters && (flags & GroupIndex::kOrderSensitive);
+            const bool units = unitsChanged && (index.unitMask[g] & plan.changedUnitMask) != 0;
+            const bool blocked = translucentChanged && (flags & GroupIndex::kOpaqueBlockerTest);
+            if (!groupReaches_[g] && !everything && !order && !units && !blocked) continue;
+            for (std::uint32_t k = index.Begin(g); k < index.End(g); ++k) {
+                const std::uint32_t i = index.samples[k];
+                StoredSample &s = old_->samples[i];
+                bool dirty = s.segmentCount == StoredSample::kEverything || (order && s.orderSensitive) ||
+                             (units && EndsOnChangedUnit(s, *old_, plan)) ||
+                             (blocked && BlockedTestMayMeet(s, *old_, *plan.translucentChanges));
+                if (!dirty && groupReaches_[g]) {
+                    // Clean by what it kept, while the changes stay near where they were then
+                    // and reach no class of its segments it did not test; else tested,
+                    // keeping what it finds.
+                    if ((groupClasses_[g] & ~s.clearance & kClassMask) == 0 && plan.drift &&
+                        plan.drift->Since(s.clearStamp) < ClearanceOf(s.clearance)) {
+                        ++cleared;
+                    } else {
+                        ++tested;
+                        double clearance;
+                        std::uint32_t untested;
+                        dirty = SampleIsDirty(s, *old_, *plan.changes, groupReach_[g], clearance, untested);
+                        if (!dirty && plan.changeStamp != 0 && clearance > 0.0) {
+                            s.clearStamp = plan.changeStamp;
+                            s.clearance = PackClearance(clearance, ~untested);
+                        }
                     }
                 }
+                oldDirty_[i] = dirty;
+                anyDirty |= dirty;
             }
-            oldDirty_[i] = dirty;
-            anyDirty |= dirty;
         }
         plan.counters->testedSamples += tested;
         plan.counters->clearedSamples += cleared;
@@ -479,6 +492,7 @@ void BlockTracer::End() {
         if (old_ && old_->fansBuilt && 4 * fresh <= live) {
             record->groupFans = std::move(old_->groupFans);  // old_ is replaced below
             GrowRecordFans(*record, nextSegments_.data(), nextFanOf_.data(), tracedSegments_, tracedGroups_);
+            BuildGroupIndex(*record);
         }
         for (const StoredSample &s : record->samples) {
             record->hasEverything |= s.segmentCount == StoredSample::kEverything;
@@ -557,6 +571,7 @@ bool BlockTracer::UpdateInPlace() {
             r.deadBytes += oldBytes;
             stored = traced;
             r.hasEverything = true;
+            AddToGroupIndex(r, stored);  // built with the cones, which an update in place needs
             continue;
         }
         const std::size_t newBytes = PackedSize(next_.packed.data() + traced.firstByte, traced.segmentCount);
@@ -574,6 +589,7 @@ bool BlockTracer::UpdateInPlace() {
         std::copy_n(next_.packed.data() + traced.firstByte, newBytes, r.packed.data() + at);
         stored = traced;
         stored.firstByte = std::uint32_t(at);
+        AddToGroupIndex(r, stored);  // built with the cones, which an update in place needs
         fresh += traced.segmentCount;
         tracedSegments_.emplace_back(nextFirstSegment_[i], traced.segmentCount);
         tracedGroups_.push_back(traced.group);
@@ -600,6 +616,7 @@ bool BlockTracer::UpdateInPlace() {
     } else {
         r.fans = BlockFans();
         r.groupFans.clear();
+        r.groupIndex.Clear();
         r.fansBuilt = false;
     }
     return true;

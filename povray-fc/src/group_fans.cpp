@@ -25,6 +25,7 @@ void BuildRecordFans(BlockRecord &record) {
     for (std::size_t g = 0; g < record.GroupCount(); ++g)
         record.groupFans.push_back(BuildFansOf(segments.data(), fanOf.data(), record.apexes, members[g]));
     record.fans = MergeFans(record.groupFans, record.apexes);
+    BuildGroupIndex(record);
     record.fansBuilt = true;
 }
 
@@ -44,6 +45,41 @@ void GrowRecordFans(BlockRecord &record, const Segment *segments, std::uint8_t *
             record.groupFans[g] = GrowFans(record.groupFans[g], segments, fanOf, record.apexes, addedTo[g]);
     record.fans = MergeFans(record.groupFans, record.apexes);
     record.fansBuilt = true;
+}
+
+void BuildGroupIndex(BlockRecord &record) {
+    GroupIndex &index = record.groupIndex;
+    const std::size_t groups = record.GroupCount();
+    index.start.assign(groups + 1, 0);
+    index.unitMask.assign(groups, 0);
+    index.flags.assign(groups, 0);
+    for (const StoredSample &s : record.samples) {
+        ++index.start[s.group + 1];
+        AddToGroupIndex(record, s);
+    }
+    for (std::size_t g = 0; g < groups; ++g) index.start[g + 1] += index.start[g];
+    index.samples.resize(record.samples.size());
+    thread_local std::vector<std::uint32_t> next;
+    next.assign(index.start.begin(), index.start.end() - 1);
+    for (std::uint32_t i = 0; i < record.samples.size(); ++i) index.samples[next[record.samples[i].group]++] = i;
+}
+
+void AddToGroupIndex(BlockRecord &record, const StoredSample &s) {
+    std::uint8_t &flags = record.groupIndex.flags[s.group];
+    if (s.orderSensitive) flags |= GroupIndex::kOrderSensitive;
+    if (s.segmentCount == StoredSample::kEverything) {
+        flags |= GroupIndex::kEverything;
+        return;
+    }
+    std::uint64_t &mask = record.groupIndex.unitMask[s.group];
+    const std::uint8_t *p = record.packed.data() + s.firstByte;
+    for (std::uint32_t k = 0; k < s.segmentCount; ++k) {
+        std::uint32_t unit;
+        p = NextPacked(p, unit);
+        if (unit == Segment::kNoUnit) continue;
+        mask |= UnitMaskBit(unit & ~Segment::kOpaqueBlocker);
+        if (unit & Segment::kOpaqueBlocker) flags |= GroupIndex::kOpaqueBlockerTest;
+    }
 }
 
 }  // namespace povrayfc

@@ -209,6 +209,69 @@ TEST(GroupFans, GrownGroupsHoldTheSamplesTracedAnew) {
     EXPECT_GT(counts.checkedSegments, 1000);
 }
 
+// A sample of `record` at pixel (x, y) whose segments (one each) ended on `units`
+// (Segment::kNoUnit for none).
+void AddSampleEndingOn(BlockRecord &record, int x, int y, const std::vector<std::uint32_t> &units) {
+    StoredSample s;
+    s.x = x;
+    s.y = y;
+    s.group = std::uint32_t(record.GroupOf(x, y));
+    s.firstByte = std::uint32_t(record.packed.size());
+    std::vector<Segment> earlier;
+    for (std::size_t k = 0; k < units.size(); ++k) {
+        const double o[3] = {double(x), double(y), -10.0 + double(k)}, d[3] = {0.0, 0.0, 1.0};
+        Segment packed;
+        ASSERT_TRUE(PackSegment(o, d, 20.0, units[k], FanApexes::kLoose, earlier.data(), earlier.size(),
+                                record.apexes, record.packed, packed));
+        earlier.push_back(packed);
+    }
+    s.segmentCount = std::uint32_t(units.size());
+    record.samples.push_back(s);
+}
+
+TEST(GroupIndex, EachGroupListsItsSamplesAndHoldsWhatTheyHold) {
+    // Invariant: a group's flags and unit mask hold every sample's of the group (Begin
+    // passes over a group whose don't concern the frame), and every sample is listed once,
+    // under its group.
+    BlockRecord record;
+    record.right = 15;
+    record.bottom = 15;  // 2 x 2 groups
+    AddSampleEndingOn(record, 1, 1, {3, Segment::kNoUnit});
+    AddSampleEndingOn(record, 9, 2, {5, 7 | Segment::kOpaqueBlocker});
+    AddSampleEndingOn(record, 2, 9, {40000});
+    AddSampleEndingOn(record, 10, 10, {});
+    AddSampleEndingOn(record, 3, 3, {4});
+    record.samples[3].segmentCount = StoredSample::kEverything;
+    record.samples[2].orderSensitive = 1;
+    BuildGroupIndex(record);
+
+    const GroupIndex &index = record.groupIndex;
+    ASSERT_TRUE(index.Built(4));
+    std::vector<int> listed(record.samples.size(), 0);
+    for (std::size_t g = 0; g < 4; ++g)
+        for (std::uint32_t k = index.Begin(g); k < index.End(g); ++k) {
+            ++listed[index.samples[k]];
+            EXPECT_EQ(record.samples[index.samples[k]].group, g);
+        }
+    EXPECT_EQ(listed, std::vector<int>(record.samples.size(), 1));
+    EXPECT_EQ(index.unitMask[0], UnitMaskBit(3) | UnitMaskBit(4));
+    EXPECT_EQ(index.unitMask[1], UnitMaskBit(5) | UnitMaskBit(7));
+    EXPECT_EQ(index.unitMask[2], UnitMaskBit(40000));
+    EXPECT_EQ(index.unitMask[3], 0u);
+    EXPECT_EQ(index.flags[0], 0);
+    EXPECT_EQ(index.flags[1], GroupIndex::kOpaqueBlockerTest);
+    EXPECT_EQ(index.flags[2], GroupIndex::kOrderSensitive);
+    EXPECT_EQ(index.flags[3], GroupIndex::kEverything);
+
+    // A sample traced again in place adds what it holds now; nothing is taken out.
+    AddSampleEndingOn(record, 1, 2, {6 | Segment::kOpaqueBlocker});
+    record.samples[0] = record.samples.back();
+    record.samples.pop_back();
+    AddToGroupIndex(record, record.samples[0]);
+    EXPECT_EQ(index.unitMask[0], UnitMaskBit(3) | UnitMaskBit(4) | UnitMaskBit(6));
+    EXPECT_EQ(index.flags[0], GroupIndex::kOpaqueBlockerTest);
+}
+
 TEST(GroupFans, GroupOfFollowsTheNearestPixelInsideTheBlock) {
     BlockRecord record;
     record.left = 64;

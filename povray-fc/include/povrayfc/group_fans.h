@@ -21,7 +21,7 @@
 
 namespace povrayfc {
 
-// Builds `record.groupFans` and `record.fans` from its samples' segments.
+// Builds `record.groupFans`, `record.fans` and `record.groupIndex` from its samples' segments.
 void BuildRecordFans(BlockRecord &record);
 
 // The same for a replayed block, cheaply: `record.groupFans` hold its groups' cones from
@@ -29,10 +29,18 @@ void BuildRecordFans(BlockRecord &record);
 // gives them (the recorder's), `added` each such sample's (first, count) in them and
 // `addedGroup` its group. The samples kept from before keep their segments inside the old
 // cones; only the groups that gained segments grow (a replayed block traces a few of its
-// samples) and only the added segments' fan numbers are validated.
+// samples) and only the added segments' fan numbers are validated. The group index is
+// left as it was: the caller builds it anew (BuildGroupIndex) or adds the samples traced
+// in place (AddToGroupIndex).
 void GrowRecordFans(BlockRecord &record, const Segment *segments, std::uint8_t *fanOf,
                     const std::vector<std::pair<std::size_t, std::size_t>> &added,
                     const std::vector<std::uint32_t> &addedGroup);
+
+// Builds `record.groupIndex` from its samples and their packed units.
+void BuildGroupIndex(BlockRecord &record);
+// Adds what sample `s` of `record` holds to its group's flags and unit mask, which stay a
+// superset of their samples' (a sample traced again in place: bits are never taken out).
+void AddToGroupIndex(BlockRecord &record, const StoredSample &s);
 
 }  // namespace povrayfc
 

@@ -26,6 +26,7 @@
 #include <memory>
 #include <vector>
 
+#include "povrayfc/group_index.h"
 #include "povrayfc/segment.h"
 #include "povrayfc/segment_fans.h"
 #include "povrayfc/segment_packing.h"
@@ -84,6 +85,9 @@ struct BlockRecord {
     // a change reaches the block's cones, only the groups it also reaches test their
     // samples' segments one by one. Built and grown with `fans`.
     std::vector<BlockFans> groupFans;
+    // Its samples by group, and what each group holds (group_index.h): built whenever
+    // `fansBuilt` is set, and cleared with the cones.
+    GroupIndex groupIndex;
     bool fansBuilt = false;
     bool hasEverything = false; // a sample depends on everything (any change dirties it)
     bool hasOrderSensitive = false;  // a sample is StoredSample::orderSensitive
@@ -137,7 +141,8 @@ struct BlockRecord {
     }
     std::size_t MemoryBytes() const {
         return sizeof(*this) + samples.capacity() * sizeof(StoredSample) + packed.capacity() +
-               pixels.capacity() * sizeof(float) + fans.MemoryBytes() + GroupFansMemoryBytes();
+               pixels.capacity() * sizeof(float) + fans.MemoryBytes() + GroupFansMemoryBytes() +
+               groupIndex.MemoryBytes();
     }
     std::size_t GroupFansMemoryBytes() const {
         std::size_t bytes = groupFans.capacity() * sizeof(BlockFans);
