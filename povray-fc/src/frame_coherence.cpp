@@ -148,8 +148,12 @@ void FrameCoherence::PlanFrame(const FrameSetup &setup, const SceneSignature &si
             plan_.mode = FramePlan::Mode::kIdle;
             return;
         }
-        change.newSequence = true;
-        change.fullReason = "recording resumed";
+        // Paused frames drop the store: one is left only when the last frame was recorded
+        // (a full one paused recording), and this local change follows from it.
+        if (!store_) {
+            change.newSequence = true;
+            change.fullReason = "recording resumed";
+        }
     }
 
     plan_.mode = FramePlan::Mode::kRecord;

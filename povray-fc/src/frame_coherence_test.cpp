@@ -341,7 +341,8 @@ TEST_F(FrameCoherenceRun, LightChangeIsAFullFrameAndTheCameraStartsASequence) {
     ASSERT_EQ(std::memcmp(full.image.data(), RenderFull(lit).data(), full.image.size() * sizeof(float)), 0);
     lit.camera = 8;
     RenderFc(lit, 3);
-    EXPECT_EQ(FrameCoherence::Get().LastStats().fullReason, "camera changed: new sequence");
+    // Not recorded: the full frame before paused recording (RecordingPolicy).
+    EXPECT_EQ(FrameCoherence::Get().LastStats().fullReason, "camera changed: new sequence (recording paused)");
 }
 
 TEST_F(FrameCoherenceRun, RecordingPausesWhileFramesStayFullAndResumes) {
@@ -351,7 +352,7 @@ TEST_F(FrameCoherenceRun, RecordingPausesWhileFramesStayFullAndResumes) {
         s.camera = 100 + f;  // a moving camera
         RenderFc(s, f);
     }
-    // Invariant: after two wasted full frames the hooks go idle.
+    // Invariant: after a wasted full frame, the hooks go idle while frames stay full.
     EXPECT_FALSE(FrameCoherence::Get().Active());
     EXPECT_NE(FrameCoherence::Get().LastStats().fullReason.find("recording paused"), std::string::npos);
     // The camera stops: this frame records again, the next reuses.
@@ -360,6 +361,23 @@ TEST_F(FrameCoherenceRun, RecordingPausesWhileFramesStayFullAndResumes) {
     const FcResult r = RenderFc(s, 7);
     EXPECT_EQ(r.tracedSamples, 0u);
     EXPECT_EQ(std::memcmp(r.image.data(), RenderFull(s).data(), r.image.size() * sizeof(float)), 0);
+}
+
+TEST_F(FrameCoherenceRun, ALocalChangeAfterAFullFrameReusesWhatTheFullFrameRecorded) {
+    ToyScene s = Frame(2.0);
+    RenderFc(s, 1);
+    s.lightY = 40;
+    const FcResult full = RenderFc(s, 2);
+    EXPECT_EQ(FrameCoherence::Get().LastStats().fullReason, "light sources changed");
+    // Invariant: the pause a full frame begins keeps that frame's record, so the next frame,
+    // whose change is local, follows it instead of recording afresh.
+    s.boxes[1].box.lo.x += 0.25;
+    s.boxes[1].box.hi.x += 0.25;
+    const FcResult next = RenderFc(s, 3);
+    EXPECT_EQ(FrameCoherence::Get().LastStats().fullReason, "");
+    EXPECT_GT(next.tracedSamples, 0u);
+    EXPECT_LT(next.tracedSamples, full.tracedSamples / 2);
+    EXPECT_EQ(std::memcmp(next.image.data(), RenderFull(s).data(), next.image.size() * sizeof(float)), 0);
 }
 
 TEST_F(FrameCoherenceRun, InexactEffectsReuseOnlyStaticReproducibleFrames) {

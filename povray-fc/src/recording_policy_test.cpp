@@ -6,10 +6,8 @@
 namespace povrayfc {
 namespace {
 
-TEST(RecordingPolicy, FullFramesPauseUntilALocalChange) {
+TEST(RecordingPolicy, AFullFramePausesUntilALocalChange) {
     RecordingPolicy p;
-    p.AfterRecordedFrame(true, 0);
-    EXPECT_FALSE(p.Paused());  // one full frame is not a pattern
     p.AfterRecordedFrame(true, 0);
     ASSERT_TRUE(p.Paused());
     EXPECT_FALSE(p.ResumeWith(false));  // the camera still moves
@@ -17,12 +15,14 @@ TEST(RecordingPolicy, FullFramesPauseUntilALocalChange) {
     EXPECT_FALSE(p.Paused());
 }
 
-TEST(RecordingPolicy, CoherentFramesThatPayResetTheStreak) {
+TEST(RecordingPolicy, CoherentFramesThatPayResetTheBusyStreak) {
     RecordingPolicy p;
-    p.AfterRecordedFrame(true, 0);
+    p.AfterRecordedFrame(false, 0.95);
     p.AfterRecordedFrame(false, 0.05);
-    p.AfterRecordedFrame(true, 0);
+    p.AfterRecordedFrame(false, 0.95);
     EXPECT_FALSE(p.Paused());
+    p.AfterRecordedFrame(false, 0.95);
+    EXPECT_TRUE(p.Paused());
 }
 
 TEST(RecordingPolicy, BusyFramesBackOffLongerEachTime) {

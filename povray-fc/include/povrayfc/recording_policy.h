@@ -4,10 +4,13 @@
 // Two ways a recorded frame is wasted: it came out full although the sequence went on
 // (the camera, a light or the global settings changed, an unbounded object moved), or it
 // was coherent but had to trace almost every sample anyway (something large moved across
-// the view). After kWastedBeforePause wasted frames in a row recording pauses. A pause
-// for full frames ends with the first frame whose change from the last is local; a pause
-// for busy frames lasts a number of frames that doubles each time it does not pay off
-// (2, 4, 8, 16), since such a frame's change is local and yet not worth following.
+// the view). A full frame pauses recording at once, until the first frame whose change
+// from the last is local: that frame resumes with the record the full frame left
+// (FrameCoherence keeps it), so a single cut costs nothing, and frames that stay full
+// (a camera moving on, an object around the camera) are not recorded after the first.
+// Busy frames pause after kBusyBeforePause of them in a row, for a number of frames that
+// doubles each time recording does not pay off (2, 4, 8, 16), since such a frame's change
+// is local and yet not worth following.
 #ifndef POVRAYFC_RECORDING_POLICY_H
 #define POVRAYFC_RECORDING_POLICY_H
 
@@ -17,7 +20,7 @@ namespace povrayfc {
 
 class RecordingPolicy {
   public:
-    static constexpr int kWastedBeforePause = 2;
+    static constexpr int kBusyBeforePause = 2;
     // A coherent frame that did more than this share of a full frame's work (WorkShare) was
     // busy: what it saved no longer covers recording and the dirty test (about 15% of the
     // CPU of such a frame in Debian's l_o, where 80% of the samples are traced every frame).
@@ -43,18 +46,22 @@ class RecordingPolicy {
     // full: traced in full although the sequence went on. tracedShare: WorkShare (coherent
     // frames).
     void AfterRecordedFrame(bool full, double tracedShare) {
-        const bool busy = !full && tracedShare > kBusyShare;
-        streak_ = (full || busy) ? streak_ + 1 : 0;
-        if (!busy && !full) backoff_ = 1;
-        if (streak_ < kWastedBeforePause) return;
+        if (full) {
+            paused_ = true;
+            streak_ = 0;
+            waitFrames_ = 0;
+            return;
+        }
+        if (tracedShare <= kBusyShare) {
+            streak_ = 0;
+            backoff_ = 1;
+            return;
+        }
+        if (++streak_ < kBusyBeforePause) return;
         paused_ = true;
         streak_ = 0;
-        if (busy) {
-            backoff_ = std::min(kMaxBackoff, backoff_ * 2);
-            waitFrames_ = backoff_;
-        } else {
-            waitFrames_ = 0;
-        }
+        backoff_ = std::min(kMaxBackoff, backoff_ * 2);
+        waitFrames_ = backoff_;
     }
 
     // While paused, at the start of a frame: whether recording resumes with it. local:
