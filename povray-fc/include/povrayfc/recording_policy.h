@@ -6,8 +6,9 @@
 // was coherent but had to trace almost every sample anyway (something large moved across
 // the view). A full frame pauses recording at once, until the first frame whose change
 // from the last is local: that frame resumes with the record the full frame left
-// (FrameCoherence keeps it), so a single cut costs nothing, and frames that stay full
-// (a camera moving on, an object around the camera) are not recorded after the first.
+// (FrameCoherence keeps it), so a single cut costs its one full frame and no more, and
+// frames that stay full (a camera moving on, an object around the camera) are not
+// recorded after the first.
 // Busy frames pause after kBusyBeforePause of them in a row, for a number of frames that
 // doubles each time recording does not pay off (2, 4, 8, 16), since such a frame's change
 // is local and yet not worth following.
