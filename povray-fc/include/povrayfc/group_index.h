@@ -30,7 +30,6 @@ struct GroupIndex {
     std::vector<std::uint64_t> unitMask;  // per group: UnitMaskBit of every unit its segments ended on
     std::vector<std::uint8_t> flags;      // per group
 
-    bool Built(std::size_t groups) const { return start.size() == groups + 1; }
     std::uint32_t Begin(std::size_t group) const { return start[group]; }
     std::uint32_t End(std::size_t group) const { return start[group + 1]; }
     void Clear() {
