@@ -485,14 +485,15 @@ void BlockTracer::End() {
     if (record_) {
         record->apexes = next_.apexes;
         const std::size_t live = old_ ? GatherSegments(*record) : TakeTracedSegments(*record);
-        // Grow the old cones by what was traced anew, unless much of the block is new
-        // (cones only ever widen when grown); otherwise they are built when needed.
+        // Grow the old cones by what was traced anew, until as much as the block holds was
+        // grown into them (BlockRecord::grownSegments); otherwise they are built when needed.
         std::size_t fresh = 0;
         for (const auto &range : tracedSegments_) fresh += range.second;
-        if (old_ && old_->fansBuilt && 4 * fresh <= live) {
+        if (old_ && old_->fansBuilt && old_->grownSegments + fresh <= 2 * live) {
             record->groupFans = std::move(old_->groupFans);  // old_ is replaced below
             GrowRecordFans(*record, nextSegments_.data(), nextFanOf_.data(), tracedSegments_, tracedGroups_);
             BuildGroupIndex(*record);
+            record->grownSegments = old_->grownSegments + fresh;
         }
         for (const StoredSample &s : record->samples) {
             record->hasEverything |= s.segmentCount == StoredSample::kEverything;
@@ -607,17 +608,19 @@ bool BlockTracer::UpdateInPlace() {
     }
     std::copy(next_.pixels.begin(), next_.pixels.end(), r.pixels.begin());
     r.apexes = next_.apexes;
-    // Grow the cones by what was traced anew, unless much of the block is new (as End).
+    // Grow the cones by what was traced anew, or leave them to be built afresh (as End).
     std::size_t live = 0;
     for (const StoredSample &s : r.samples)
         if (s.segmentCount != StoredSample::kEverything) live += s.segmentCount;
-    if (4 * fresh <= live) {
+    if (r.grownSegments + fresh <= 2 * live) {
         GrowRecordFans(r, nextSegments_.data(), nextFanOf_.data(), tracedSegments_, tracedGroups_);
+        r.grownSegments += fresh;
     } else {
         r.fans = BlockFans();
         r.groupFans.clear();
         r.groupIndex.Clear();
         r.fansBuilt = false;
+        r.grownSegments = 0;
     }
     return true;
 }

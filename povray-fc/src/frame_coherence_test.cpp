@@ -671,12 +671,29 @@ TEST_F(FrameCoherenceRun, ReplayedBlockInTheSameOrderIsUpdatedInPlace) {
     EXPECT_EQ(record()->samples[0].segmentCount, 3u);
     EXPECT_TRUE(consistent(*record()));
     // Many more frames, the piece count changing every time: always found, always in place,
-    // compacted once a quarter is dead.
+    // compacted once a quarter is dead. The cones grow by each frame's new segments until
+    // twice as many as the record holds were added since they were built; then they are
+    // dropped, to be built afresh by the next frame that tests the block.
+    int dropped = 0;
     for (int f = 4; f < 40; ++f) {
-        EXPECT_EQ(frame(f, f % 2 == 1, false, 1 + f % 4), 1) << "frame " << f;
+        const bool builtBefore = record()->fansBuilt;
+        const std::size_t grownBefore = record()->grownSegments;
+        const int pieces = 1 + f % 4;
+        EXPECT_EQ(frame(f, f % 2 == 1, false, pieces), 1) << "frame " << f;
         EXPECT_EQ(record(), first) << "frame " << f;
         EXPECT_TRUE(consistent(*record())) << "frame " << f;
+        std::size_t live = 0;
+        for (const StoredSample &smp : record()->samples) live += smp.segmentCount;
+        if (record()->fansBuilt) {
+            EXPECT_EQ(record()->grownSegments, (builtBefore ? grownBefore : 0) + std::size_t(pieces)) << "frame " << f;
+            EXPECT_LE(record()->grownSegments, 2 * live) << "frame " << f;
+        } else {
+            EXPECT_GT((builtBefore ? grownBefore : 0) + std::size_t(pieces), 2 * live) << "frame " << f;
+            EXPECT_EQ(record()->grownSegments, 0u) << "frame " << f;
+            ++dropped;
+        }
     }
+    EXPECT_GE(dropped, 1);
     // Asked in another order the block gets a new record, as before.
     EXPECT_EQ(frame(40, false, true, 1), 1);
     EXPECT_NE(record(), first);

@@ -27,6 +27,7 @@ void BuildRecordFans(BlockRecord &record) {
     record.fans = MergeFans(record.groupFans, record.apexes);
     BuildGroupIndex(record);
     record.fansBuilt = true;
+    record.grownSegments = 0;
 }
 
 void GrowRecordFans(BlockRecord &record, const Segment *segments, std::uint8_t *fanOf,

@@ -89,6 +89,11 @@ struct BlockRecord {
     // `fansBuilt` is set, and cleared with the cones.
     GroupIndex groupIndex;
     bool fansBuilt = false;
+    // Segments traced anew and grown into the cones since they were last built: grown
+    // cones only widen, so once as many were added as the record holds, they are built
+    // afresh (when next needed). Counting over frames, not per frame, keeps a block that is
+    // partly traced again every frame from paying a whole build every frame.
+    std::size_t grownSegments = 0;
     bool hasEverything = false; // a sample depends on everything (any change dirties it)
     bool hasOrderSensitive = false;  // a sample is StoredSample::orderSensitive
     // UnitMaskBit of every unit a segment of the record ended on (a superset once samples
