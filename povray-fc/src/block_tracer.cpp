@@ -36,16 +36,14 @@ bool SampleIsDirty(const StoredSample &s, const BlockRecord &record, const Chang
                    const BlockHulls &reach, double &clearance, std::uint32_t &untested) {
     clearance = std::numeric_limits<double>::infinity();
     untested = 0;
-    thread_local std::vector<Segment> segments;
-    thread_local std::vector<std::uint8_t> fans;
-    segments.clear();
-    fans.clear();
-    if (!record.Unpack(s, segments, fans)) {
+    thread_local UnpackScratch scratch;
+    scratch.Fit(s.segmentCount);
+    const Segment *segment = scratch.segments.data();
+    const std::uint8_t *fanOf = scratch.fans.data();
+    if (!record.Unpack(s, scratch.segments.data(), scratch.fans.data())) {
         clearance = 0.0;
         return true;
     }
-    const Segment *segment = segments.data();
-    const std::uint8_t *fanOf = fans.data();
     for (std::uint32_t i = 0; i < s.segmentCount; ++i) {
         // An opaque blocker's test holds whatever else appears on its way (EndsOnChangedUnit).
         if (!segment[i].HullTested()) continue;
@@ -92,15 +90,12 @@ bool EndsOnChangedUnit(const StoredSample &s, BlockRecord &record, const FramePl
             return id < changed.size() && changed[id] != FramePlan::kUnitKept;
         }))
         return false;
-    thread_local std::vector<Segment> segments;
-    thread_local std::vector<std::uint8_t> fans;
-    thread_local std::vector<std::uint32_t> headers;
-    segments.clear();
-    fans.clear();
-    headers.clear();
-    if (!record.Unpack(s, segments, fans, &headers)) return true;
+    thread_local UnpackScratch scratch;
+    scratch.Fit(s.segmentCount);
+    const std::vector<std::uint32_t> &headers = scratch.headers;
+    if (!record.Unpack(s, scratch.segments.data(), scratch.fans.data(), scratch.headers.data())) return true;
     for (std::uint32_t i = 0; i < s.segmentCount; ++i) {
-        const Segment &segment = segments[i];
+        const Segment &segment = scratch.segments[i];
         if (segment.unit == Segment::kNoUnit) continue;
         const std::uint32_t unit = segment.UnitId();
         if (unit >= changed.size() || changed[unit] == FramePlan::kUnitKept) continue;
@@ -135,13 +130,13 @@ bool BlockedTestMayMeet(const StoredSample &s, const BlockRecord &record, const 
     // The units alone first: most samples have no such test.
     if (!AnyPackedUnit(s, record, [](std::uint32_t unit) { return (unit & Segment::kOpaqueBlocker) != 0; }))
         return false;
-    thread_local std::vector<Segment> segments;
-    thread_local std::vector<std::uint8_t> fans;
-    segments.clear();
-    fans.clear();
-    if (!record.Unpack(s, segments, fans)) return true;
-    for (const Segment &segment : segments)
+    thread_local UnpackScratch scratch;
+    scratch.Fit(s.segmentCount);
+    if (!record.Unpack(s, scratch.segments.data(), scratch.fans.data())) return true;
+    for (std::uint32_t i = 0; i < s.segmentCount; ++i) {
+        const Segment &segment = scratch.segments[i];
         if (!segment.HullTested() && translucent.MayMeet(segment)) return true;
+    }
     return false;
 }
 

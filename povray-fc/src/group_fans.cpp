@@ -6,24 +6,26 @@ namespace povrayfc {
 
 void BuildRecordFans(BlockRecord &record) {
     // The record's segments, unpacked, numbered in its samples' order.
-    thread_local std::vector<Segment> segments;
-    thread_local std::vector<std::uint8_t> fanOf;
+    thread_local UnpackScratch scratch;
     thread_local std::vector<std::vector<std::uint32_t>> members;
-    segments.clear();
-    fanOf.clear();
+    std::size_t total = 0;
+    for (const StoredSample &s : record.samples)
+        if (s.segmentCount != StoredSample::kEverything) total += s.segmentCount;
+    scratch.Fit(total);
     members.resize(record.GroupCount());
     for (std::vector<std::uint32_t> &m : members) m.clear();
+    std::uint32_t first = 0;
     for (StoredSample &s : record.samples) {
         if (s.segmentCount == StoredSample::kEverything) continue;
-        const std::uint32_t first = std::uint32_t(segments.size());
-        if (!record.UnpackOrForget(s, segments, fanOf)) continue;
+        if (!record.UnpackOrForget(s, scratch.segments.data() + first, scratch.fans.data() + first)) continue;
         std::vector<std::uint32_t> &m = members[s.group];
         for (std::uint32_t k = 0; k < s.segmentCount; ++k) m.push_back(first + k);
+        first += s.segmentCount;
     }
     record.groupFans.clear();
     record.groupFans.reserve(record.GroupCount());
     for (std::size_t g = 0; g < record.GroupCount(); ++g)
-        record.groupFans.push_back(BuildFansOf(segments.data(), fanOf.data(), record.apexes, members[g]));
+        record.groupFans.push_back(BuildFansOf(scratch.segments.data(), scratch.fans.data(), record.apexes, members[g]));
     record.fans = MergeFans(record.groupFans, record.apexes);
     BuildGroupIndex(record);
     record.fansBuilt = true;

@@ -139,9 +139,9 @@ void CheckGroups(const BlockRecord &record, const ChangeIndex &changes, Counts &
         const BlockHulls group = FindGroupHulls(record.groupFans[g], changes, block);
         counts.samplesInReachedBlocks += block.Any();
         counts.samplesInReachedGroups += group.Any();
-        std::vector<Segment> segments;
-        std::vector<std::uint8_t> fanOf;
-        ASSERT_TRUE(record.Unpack(s, segments, fanOf));
+        std::vector<Segment> segments(s.segmentCount);
+        std::vector<std::uint8_t> fanOf(s.segmentCount);
+        ASSERT_TRUE(record.Unpack(s, segments.data(), fanOf.data()));
         for (std::uint32_t i = 0; i < s.segmentCount; ++i) {
             bool meets = false;
             for (const Hull &h : changes.Hulls()) meets |= MayMeet(segments[i], h);

@@ -119,26 +119,21 @@ struct BlockRecord {
     const float *Pixel(int x, int y) const {
         return &pixels[(std::size_t(y - top) * std::size_t(Width()) + std::size_t(x - left)) * 5];
     }
-    // Appends sample `s`'s segments to `segments` and their bundles to `fanOf` (and, when
-    // given, each one's offset in `packed` to `headers`). False when they cannot be read
-    // back (segment_packing.h): the sample must count as dirty.
-    bool Unpack(const StoredSample &s, std::vector<Segment> &segments, std::vector<std::uint8_t> &fanOf,
-                std::vector<std::uint32_t> *headers = nullptr) const {
-        const std::size_t before = headers ? headers->size() : 0;
-        const bool ok = UnpackSample(packed.data() + s.firstByte, s.segmentCount, apexes, segments, fanOf, headers);
-        if (headers)
-            for (std::size_t i = before; i < headers->size(); ++i) (*headers)[i] += s.firstByte;
+    // Unpacks sample `s`'s segments into `segments` and their bundles into `fanOf` (room
+    // for s.segmentCount each: UnpackScratch), and, when given, each one's offset in
+    // `packed` into `headers`. False when they cannot be read back (segment_packing.h):
+    // the sample must count as dirty.
+    bool Unpack(const StoredSample &s, Segment *segments, std::uint8_t *fanOf,
+                std::uint32_t *headers = nullptr) const {
+        const bool ok = UnpackSampleTo(packed.data() + s.firstByte, s.segmentCount, apexes, segments, fanOf, headers);
+        if (ok && headers)
+            for (std::uint32_t i = 0; i < s.segmentCount; ++i) headers[i] += s.firstByte;
         return ok;
     }
     // As Unpack; a sample whose segments cannot be read back is made to depend on
     // everything (its bytes left dead), and gives none.
-    bool UnpackOrForget(StoredSample &s, std::vector<Segment> &segments, std::vector<std::uint8_t> &fanOf,
-                        std::vector<std::uint32_t> *headers = nullptr) {
-        const std::size_t n = segments.size(), f = fanOf.size(), h = headers ? headers->size() : 0;
-        if (Unpack(s, segments, fanOf, headers)) return true;
-        segments.resize(n);
-        fanOf.resize(f);
-        if (headers) headers->resize(h);
+    bool UnpackOrForget(StoredSample &s, Segment *segments, std::uint8_t *fanOf) {
+        if (Unpack(s, segments, fanOf)) return true;
         deadBytes += PackedSize(packed.data() + s.firstByte, s.segmentCount);
         s.segmentCount = StoredSample::kEverything;
         hasEverything = true;

@@ -116,6 +116,26 @@ bool UnpackSample(const std::uint8_t *bytes, std::uint32_t count, const FanApexe
                   std::vector<Segment> &segments, std::vector<std::uint8_t> &fanOf,
                   std::vector<std::uint32_t> *headers = nullptr);
 
+// As UnpackSample, into room the caller holds for `count` segments, fans and (when given)
+// headers: no vector grows, nothing is zeroed first. The test of a block's samples
+// unpacks millions of samples a frame into scratch it keeps.
+bool UnpackSampleTo(const std::uint8_t *bytes, std::uint32_t count, const FanApexes &apexes, Segment *segments,
+                    std::uint8_t *fanOf, std::uint32_t *headers = nullptr);
+
+// Scratch for unpacking samples that only grows: sized once for the largest sample (or
+// block) seen, then reused as it is.
+struct UnpackScratch {
+    std::vector<Segment> segments;
+    std::vector<std::uint8_t> fans;
+    std::vector<std::uint32_t> headers;
+    void Fit(std::size_t count) {
+        if (segments.size() >= count) return;
+        segments.resize(count);
+        fans.resize(count);
+        headers.resize(count);
+    }
+};
+
 // Reads the unit of the packed segment whose header is at `header` (Segment::kNoUnit when
 // none) and returns where the next one begins: walking a sample's units without unpacking.
 inline const std::uint8_t *NextPacked(const std::uint8_t *header, std::uint32_t &unit) {
