@@ -487,7 +487,7 @@ void BlockTracer::End() {
         if (old_ && old_->fansBuilt && old_->grownSegments + fresh <= 2 * live) {
             record->groupFans = std::move(old_->groupFans);  // old_ is replaced below
             GrowRecordFans(*record, nextSegments_.data(), nextFanOf_.data(), tracedSegments_, tracedGroups_);
-            BuildGroupIndex(*record);
+            BuildGroupIndex(*record, &old_->groupIndex, &keptFromOld_);
             record->grownSegments = old_->grownSegments + fresh;
         }
         for (const StoredSample &s : record->samples) {
@@ -535,15 +535,15 @@ std::size_t BlockTracer::GatherSegments(BlockRecord &record) {
         const bool kept = keptFromOld_[i] != 0;
         const std::uint8_t *first = (kept ? *old_ : next_).packed.data() + s.firstByte;
         record.packed.insert(record.packed.end(), first, first + packedSizes_[i]);
-        if (kept) {
-            record.unitMask |= PackedUnitMask(first, s.segmentCount);
-        } else {
+        if (!kept) {
             tracedSegments_.emplace_back(nextFirstSegment_[i], s.segmentCount);
             tracedGroups_.push_back(s.group);
         }
         s.firstByte = std::uint32_t(at);
     }
-    record.unitMask |= nextUnitMask_;  // the traced samples'
+    // The traced samples' units, and a superset of the kept ones' (read again only when
+    // the cones are next built).
+    record.unitMask |= nextUnitMask_ | old_->unitMask;
     return live;
 }
 

@@ -4,6 +4,51 @@
 
 namespace povrayfc {
 
+namespace {
+
+// The flags a sample gives its group by itself (kEverything, kOrderSensitive).
+void AddSampleFlags(GroupIndex &index, const StoredSample &s) {
+    std::uint8_t &flags = index.flags[s.group];
+    if (s.orderSensitive) flags |= GroupIndex::kOrderSensitive;
+    if (s.segmentCount == StoredSample::kEverything) flags |= GroupIndex::kEverything;
+}
+
+// The unit mask and opaque-blocker flag its packed segments give it.
+void AddSampleUnits(BlockRecord &record, const StoredSample &s) {
+    if (s.segmentCount == StoredSample::kEverything) return;
+    std::uint8_t &flags = record.groupIndex.flags[s.group];
+    std::uint64_t &mask = record.groupIndex.unitMask[s.group];
+    const std::uint8_t *p = record.packed.data() + s.firstByte;
+    for (std::uint32_t k = 0; k < s.segmentCount; ++k) {
+        std::uint32_t unit;
+        p = NextPacked(p, unit);
+        if (unit == Segment::kNoUnit) continue;
+        mask |= UnitMaskBit(unit & ~Segment::kOpaqueBlocker);
+        if (unit & Segment::kOpaqueBlocker) flags |= GroupIndex::kOpaqueBlockerTest;
+    }
+}
+
+// Indexes the record's samples by group, with the flags they give by themselves; every
+// unit mask 0.
+void IndexSamplesByGroup(BlockRecord &record) {
+    GroupIndex &index = record.groupIndex;
+    const std::size_t groups = record.GroupCount();
+    index.start.assign(groups + 1, 0);
+    index.unitMask.assign(groups, 0);
+    index.flags.assign(groups, 0);
+    for (const StoredSample &s : record.samples) {
+        ++index.start[s.group + 1];
+        AddSampleFlags(index, s);
+    }
+    for (std::size_t g = 0; g < groups; ++g) index.start[g + 1] += index.start[g];
+    index.samples.resize(record.samples.size());
+    thread_local std::vector<std::uint32_t> next;
+    next.assign(index.start.begin(), index.start.end() - 1);
+    for (std::uint32_t i = 0; i < record.samples.size(); ++i) index.samples[next[record.samples[i].group]++] = i;
+}
+
+}  // namespace
+
 void BuildRecordFans(BlockRecord &record) {
     // The record's segments, unpacked, numbered in its samples' order.
     thread_local UnpackScratch scratch;
@@ -14,12 +59,24 @@ void BuildRecordFans(BlockRecord &record) {
     scratch.Fit(total);
     members.resize(record.GroupCount());
     for (std::vector<std::uint32_t> &m : members) m.clear();
+    // What each group's segments ended on, read from them as they are unpacked.
+    thread_local std::vector<std::uint64_t> unitMask;
+    thread_local std::vector<std::uint8_t> blockerTest;
+    unitMask.assign(record.GroupCount(), 0);
+    blockerTest.assign(record.GroupCount(), 0);
     std::uint32_t first = 0;
     for (StoredSample &s : record.samples) {
         if (s.segmentCount == StoredSample::kEverything) continue;
-        if (!record.UnpackOrForget(s, scratch.segments.data() + first, scratch.fans.data() + first)) continue;
+        Segment *segments = scratch.segments.data() + first;
+        if (!record.UnpackOrForget(s, segments, scratch.fans.data() + first)) continue;
         std::vector<std::uint32_t> &m = members[s.group];
-        for (std::uint32_t k = 0; k < s.segmentCount; ++k) m.push_back(first + k);
+        for (std::uint32_t k = 0; k < s.segmentCount; ++k) {
+            m.push_back(first + k);
+            const std::uint32_t unit = segments[k].unit;
+            if (unit == Segment::kNoUnit) continue;
+            unitMask[s.group] |= UnitMaskBit(unit & ~Segment::kOpaqueBlocker);
+            if (unit & Segment::kOpaqueBlocker) blockerTest[s.group] = GroupIndex::kOpaqueBlockerTest;
+        }
         first += s.segmentCount;
     }
     record.groupFans.clear();
@@ -27,7 +84,13 @@ void BuildRecordFans(BlockRecord &record) {
     for (std::size_t g = 0; g < record.GroupCount(); ++g)
         record.groupFans.push_back(BuildFansOf(scratch.segments.data(), scratch.fans.data(), record.apexes, members[g]));
     record.fans = MergeFans(record.groupFans, record.apexes);
-    BuildGroupIndex(record);
+    IndexSamplesByGroup(record);
+    record.unitMask = 0;  // exact again, where updates only ever added bits
+    for (std::size_t g = 0; g < record.GroupCount(); ++g) {
+        record.groupIndex.unitMask[g] = unitMask[g];
+        record.groupIndex.flags[g] |= blockerTest[g];
+        record.unitMask |= unitMask[g];
+    }
     record.fansBuilt = true;
     record.grownSegments = 0;
 }
@@ -50,39 +113,22 @@ void GrowRecordFans(BlockRecord &record, const Segment *segments, std::uint8_t *
     record.fansBuilt = true;
 }
 
-void BuildGroupIndex(BlockRecord &record) {
+void BuildGroupIndex(BlockRecord &record, const GroupIndex *before, const std::vector<std::uint8_t> *kept) {
+    IndexSamplesByGroup(record);
     GroupIndex &index = record.groupIndex;
-    const std::size_t groups = record.GroupCount();
-    index.start.assign(groups + 1, 0);
-    index.unitMask.assign(groups, 0);
-    index.flags.assign(groups, 0);
-    for (const StoredSample &s : record.samples) {
-        ++index.start[s.group + 1];
-        AddToGroupIndex(record, s);
+    if (before) {
+        for (std::size_t g = 0; g < index.flags.size(); ++g) {
+            index.unitMask[g] = before->unitMask[g];
+            index.flags[g] |= before->flags[g] & GroupIndex::kOpaqueBlockerTest;
+        }
     }
-    for (std::size_t g = 0; g < groups; ++g) index.start[g + 1] += index.start[g];
-    index.samples.resize(record.samples.size());
-    thread_local std::vector<std::uint32_t> next;
-    next.assign(index.start.begin(), index.start.end() - 1);
-    for (std::uint32_t i = 0; i < record.samples.size(); ++i) index.samples[next[record.samples[i].group]++] = i;
+    for (std::size_t i = 0; i < record.samples.size(); ++i)
+        if (!before || !(*kept)[i]) AddSampleUnits(record, record.samples[i]);
 }
 
 void AddToGroupIndex(BlockRecord &record, const StoredSample &s) {
-    std::uint8_t &flags = record.groupIndex.flags[s.group];
-    if (s.orderSensitive) flags |= GroupIndex::kOrderSensitive;
-    if (s.segmentCount == StoredSample::kEverything) {
-        flags |= GroupIndex::kEverything;
-        return;
-    }
-    std::uint64_t &mask = record.groupIndex.unitMask[s.group];
-    const std::uint8_t *p = record.packed.data() + s.firstByte;
-    for (std::uint32_t k = 0; k < s.segmentCount; ++k) {
-        std::uint32_t unit;
-        p = NextPacked(p, unit);
-        if (unit == Segment::kNoUnit) continue;
-        mask |= UnitMaskBit(unit & ~Segment::kOpaqueBlocker);
-        if (unit & Segment::kOpaqueBlocker) flags |= GroupIndex::kOpaqueBlockerTest;
-    }
+    AddSampleFlags(record.groupIndex, s);
+    AddSampleUnits(record, s);
 }
 
 }  // namespace povrayfc

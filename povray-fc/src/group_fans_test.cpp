@@ -272,6 +272,42 @@ TEST(GroupIndex, EachGroupListsItsSamplesAndHoldsWhatTheyHold) {
     EXPECT_EQ(index.flags[0], GroupIndex::kOpaqueBlockerTest);
 }
 
+TEST(GroupIndex, ARecordBuiltFromAnOldOneCarriesWhatItsKeptSamplesHeld) {
+    // A replayed block whose samples came in another order gets a new record: the samples
+    // kept from the old one are not read again, their groups' masks and blocker flags
+    // carry over; the traced ones are read. The cones' build reads every segment anew.
+    BlockRecord old;
+    old.right = 15;
+    old.bottom = 15;  // 2 x 2 groups
+    AddSampleEndingOn(old, 1, 1, {3, Segment::kNoUnit});
+    AddSampleEndingOn(old, 9, 2, {5, 7 | Segment::kOpaqueBlocker});
+    AddSampleEndingOn(old, 2, 9, {8});
+    BuildGroupIndex(old);
+
+    BlockRecord record;
+    record.right = 15;
+    record.bottom = 15;
+    AddSampleEndingOn(record, 9, 2, {5, 7 | Segment::kOpaqueBlocker});  // kept
+    AddSampleEndingOn(record, 2, 9, {40000});                            // traced anew
+    AddSampleEndingOn(record, 1, 1, {3, Segment::kNoUnit});              // kept
+    const std::vector<std::uint8_t> kept = {1, 0, 1};
+    BuildGroupIndex(record, &old.groupIndex, &kept);
+    const GroupIndex &index = record.groupIndex;
+    EXPECT_EQ(index.unitMask[0], UnitMaskBit(3));
+    EXPECT_EQ(index.unitMask[1], UnitMaskBit(5) | UnitMaskBit(7));
+    EXPECT_EQ(index.unitMask[2], UnitMaskBit(8) | UnitMaskBit(40000));  // a superset
+    EXPECT_EQ(index.flags[1], GroupIndex::kOpaqueBlockerTest);
+    EXPECT_EQ(index.flags[0] | index.flags[2] | index.flags[3], 0);
+
+    BuildRecordFans(record);
+    EXPECT_EQ(index.unitMask[0], UnitMaskBit(3));
+    EXPECT_EQ(index.unitMask[1], UnitMaskBit(5) | UnitMaskBit(7));
+    EXPECT_EQ(index.unitMask[2], UnitMaskBit(40000));  // exact again
+    EXPECT_EQ(index.flags[1], GroupIndex::kOpaqueBlockerTest);
+    EXPECT_EQ(index.flags[0] | index.flags[2] | index.flags[3], 0);
+    EXPECT_EQ(record.unitMask, UnitMaskBit(3) | UnitMaskBit(5) | UnitMaskBit(7) | UnitMaskBit(40000));
+}
+
 TEST(GroupFans, GroupOfFollowsTheNearestPixelInsideTheBlock) {
     BlockRecord record;
     record.left = 64;

@@ -6,8 +6,6 @@
 #include <cstring>
 #include <limits>
 
-#include "povrayfc/sample_store.h"
-
 namespace povrayfc {
 
 namespace {
@@ -327,17 +325,6 @@ bool UnpackSample(const std::uint8_t *bytes, std::uint32_t count, const FanApexe
         at = headers->data() + headers->size() - count;
     }
     return UnpackSampleTo(bytes, count, apexes, segments.data() + first, fanOf.data() + fanOf.size() - count, at);
-}
-
-std::uint64_t PackedUnitMask(const std::uint8_t *bytes, std::uint32_t count) {
-    std::uint64_t mask = 0;
-    const std::uint8_t *p = bytes;
-    for (std::uint32_t i = 0; i < count; ++i) {
-        std::uint32_t unit;
-        p = NextPacked(p, unit);
-        if (unit != Segment::kNoUnit) mask |= UnitMaskBit(unit & ~Segment::kOpaqueBlocker);
-    }
-    return mask;
 }
 
 bool RewritePackedUnit(std::uint8_t *header, std::uint32_t unit) {

@@ -36,8 +36,12 @@ void GrowRecordFans(BlockRecord &record, const Segment *segments, std::uint8_t *
                     const std::vector<std::pair<std::size_t, std::size_t>> &added,
                     const std::vector<std::uint32_t> &addedGroup);
 
-// Builds `record.groupIndex` from its samples and their packed units.
-void BuildGroupIndex(BlockRecord &record);
+// Builds `record.groupIndex` from its samples and their packed units. With `before`: the
+// samples `kept` marks were taken over from a record of the same block whose index that
+// is, and what their groups held there is carried over (a superset, as AddToGroupIndex
+// keeps) instead of reading their units again; only the others' are read.
+void BuildGroupIndex(BlockRecord &record, const GroupIndex *before = nullptr,
+                     const std::vector<std::uint8_t> *kept = nullptr);
 // Adds what sample `s` of `record` holds to its group's flags and unit mask, which stay a
 // superset of their samples' (a sample traced again in place: bits are never taken out).
 void AddToGroupIndex(BlockRecord &record, const StoredSample &s);

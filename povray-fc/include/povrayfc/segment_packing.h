@@ -152,9 +152,6 @@ inline std::size_t PackedSize(const std::uint8_t *bytes, std::uint32_t count) {
     return std::size_t(p - bytes);
 }
 
-// The UnitMaskBit (sample_store.h) of every unit a sample's packed segments ended on.
-std::uint64_t PackedUnitMask(const std::uint8_t *bytes, std::uint32_t count);
-
 // Replaces the unit of the packed segment whose header is at `header` by `unit` (a
 // Segment::unit value, not kNoUnit). False, changing nothing, when it does not fit the
 // width the segment was packed with.
