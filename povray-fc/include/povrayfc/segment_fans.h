@@ -85,8 +85,9 @@ BlockFans BuildFansOf(const Segment *segments, const std::uint8_t *fanOf, const 
 
 // The fans of a replayed block (or group), cheaply: `old` were the fans of the segments it
 // kept, and the segments in `added` (first index, count) were traced anew; each fan only
-// widens to hold its new members. (Cones then never narrow: the caller rebuilds from
-// scratch when much of a block is new.) `fanOf` must be valid (ValidateFanNumbers).
+// widens to hold its new members. (Cones then never narrow: the caller rebuilds them from
+// scratch once twice as many segments as the block holds were grown into them,
+// BlockRecord::grownSegments.) `fanOf` must be valid (ValidateFanNumbers).
 BlockFans GrowFans(const BlockFans &old, const Segment *segments, const std::uint8_t *fanOf,
                    const FanApexes &apexes, const std::vector<std::pair<std::size_t, std::size_t>> &added);
 
