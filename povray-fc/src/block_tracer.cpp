@@ -480,7 +480,7 @@ void BlockTracer::End() {
     if (record_) {
         record->apexes = next_.apexes;
         const std::size_t live = old_ ? GatherSegments(*record) : TakeTracedSegments(*record);
-        // Grow the old cones by what was traced anew, until as much as the block holds was
+        // Grow the old cones by what was traced anew, until twice what the block holds was
         // grown into them (BlockRecord::grownSegments); otherwise they are built when needed.
         std::size_t fresh = 0;
         for (const auto &range : tracedSegments_) fresh += range.second;

@@ -302,8 +302,8 @@ bool PackSegment(const double origin[3], const double direction[3], double tmax,
     return true;
 }
 
-bool UnpackSampleTo(const std::uint8_t *bytes, std::uint32_t count, const FanApexes &apexes, Segment *segments,
-                    std::uint8_t *fanOf, std::uint32_t *headers) {
+bool UnpackSample(const std::uint8_t *bytes, std::uint32_t count, const FanApexes &apexes, Segment *segments,
+                  std::uint8_t *fanOf, std::uint32_t *headers) {
     const std::uint8_t *p = bytes;
     for (std::uint32_t i = 0; i < count; ++i) {
         if (headers) headers[i] = std::uint32_t(p - bytes);
@@ -311,20 +311,6 @@ bool UnpackSampleTo(const std::uint8_t *bytes, std::uint32_t count, const FanApe
         if (!p) return false;
     }
     return true;
-}
-
-bool UnpackSample(const std::uint8_t *bytes, std::uint32_t count, const FanApexes &apexes,
-                  std::vector<Segment> &segments, std::vector<std::uint8_t> &fanOf,
-                  std::vector<std::uint32_t> *headers) {
-    const std::size_t first = segments.size();
-    segments.resize(first + count);
-    fanOf.resize(fanOf.size() + count);
-    std::uint32_t *at = nullptr;
-    if (headers) {
-        headers->resize(headers->size() + count);
-        at = headers->data() + headers->size() - count;
-    }
-    return UnpackSampleTo(bytes, count, apexes, segments.data() + first, fanOf.data() + fanOf.size() - count, at);
 }
 
 bool RewritePackedUnit(std::uint8_t *header, std::uint32_t unit) {

@@ -121,10 +121,9 @@ TEST(SegmentPacking, WhatIsReadBackIsWhatThePackerPromisedAndHoldsTheTracedRay) 
         }
         std::size_t k = 0, total = 0;
         for (std::size_t i = 0; i < samples.size(); ++i) {
-            std::vector<Segment> segments;
-            std::vector<std::uint8_t> fanOf;
-            ASSERT_TRUE(UnpackSample(bytes.data() + firsts[i], counts[i], apexes, segments, fanOf));
-            ASSERT_EQ(segments.size(), samples[i].size());
+            std::vector<Segment> segments(counts[i]);
+            std::vector<std::uint8_t> fanOf(counts[i]);
+            ASSERT_TRUE(UnpackSample(bytes.data() + firsts[i], counts[i], apexes, segments.data(), fanOf.data()));
             EXPECT_EQ(PackedSize(bytes.data() + firsts[i], counts[i]),
                       (i + 1 < firsts.size() ? firsts[i + 1] : bytes.size()) - firsts[i]);
             for (std::size_t j = 0; j < segments.size(); ++j, ++k) {
@@ -203,9 +202,9 @@ TEST(SegmentPacking, UnitsAreReadAndRewrittenWithinTheirWidth) {
     EXPECT_FALSE(RewritePackedUnit(bytes.data(), 40000 | Segment::kOpaqueBlocker));
     EXPECT_TRUE(RewritePackedUnit(bytes.data() + second, 123456));
     EXPECT_FALSE(RewritePackedUnit(bytes.data() + third, 1));
-    std::vector<Segment> segments;
-    std::vector<std::uint8_t> fanOf;
-    ASSERT_TRUE(UnpackSample(bytes.data(), 3, apexes, segments, fanOf));
+    std::vector<Segment> segments(3);
+    std::vector<std::uint8_t> fanOf(3);
+    ASSERT_TRUE(UnpackSample(bytes.data(), 3, apexes, segments.data(), fanOf.data()));
     EXPECT_EQ(segments[0].unit, 9 | Segment::kOpaqueBlocker);
     EXPECT_EQ(segments[1].unit, 123456u);
     EXPECT_EQ(segments[2].unit, Segment::kNoUnit);
@@ -220,11 +219,11 @@ TEST(SegmentPacking, BytesThatReferToAMissingApexDoNotUnpack) {
     Segment s;
     ASSERT_TRUE(PackSegment(o, d, std::sqrt(2502.0), Segment::kNoUnit, fan, nullptr, 0, apexes, bytes, s));
     ASSERT_EQ(bytes[1] & packing::kDirectionMask, packing::kDirectionToApex);
-    std::vector<Segment> segments;
-    std::vector<std::uint8_t> fanOf;
-    EXPECT_TRUE(UnpackSample(bytes.data(), 1, apexes, segments, fanOf));
+    Segment segment;
+    std::uint8_t fanOf;
+    EXPECT_TRUE(UnpackSample(bytes.data(), 1, apexes, &segment, &fanOf));
     FanApexes none;
-    EXPECT_FALSE(UnpackSample(bytes.data(), 1, none, segments, fanOf));
+    EXPECT_FALSE(UnpackSample(bytes.data(), 1, none, &segment, &fanOf));
 }
 
 TEST(SegmentPacking, RaysThatCannotBeStoredAppendNothing) {

@@ -90,8 +90,8 @@ struct BlockRecord {
     GroupIndex groupIndex;
     bool fansBuilt = false;
     // Segments traced anew and grown into the cones since they were last built: grown
-    // cones only widen, so once as many were added as the record holds, they are built
-    // afresh (when next needed). Counting over frames, not per frame, keeps a block that is
+    // cones only widen, so once twice as many were added as the record holds, they are
+    // built afresh (when next needed). Counting over frames, not per frame, keeps a block that is
     // partly traced again every frame from paying a whole build every frame.
     std::size_t grownSegments = 0;
     bool hasEverything = false; // a sample depends on everything (any change dirties it)
@@ -125,7 +125,7 @@ struct BlockRecord {
     // the sample must count as dirty.
     bool Unpack(const StoredSample &s, Segment *segments, std::uint8_t *fanOf,
                 std::uint32_t *headers = nullptr) const {
-        const bool ok = UnpackSampleTo(packed.data() + s.firstByte, s.segmentCount, apexes, segments, fanOf, headers);
+        const bool ok = UnpackSample(packed.data() + s.firstByte, s.segmentCount, apexes, segments, fanOf, headers);
         if (ok && headers)
             for (std::uint32_t i = 0; i < s.segmentCount; ++i) headers[i] += s.firstByte;
         return ok;

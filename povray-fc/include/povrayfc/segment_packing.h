@@ -108,19 +108,14 @@ bool PackSegment(const double origin[3], const double direction[3], double tmax,
                  std::uint8_t fan, const Segment *earlier, std::size_t count, const FanApexes &apexes,
                  std::vector<std::uint8_t> &out, Segment &packed);
 
-// Unpacks a sample's `count` segments packed at `bytes`, appending them to `segments` and
-// their fans to `fanOf` (a fan number without an apex in `apexes` becomes kLoose), and to
-// `headers`, when given, each one's offset from `bytes`. Returns false when the bytes refer
+// Unpacks a sample's `count` segments packed at `bytes` into `segments` and their fans
+// into `fanOf` (a fan number without an apex in `apexes` becomes kLoose), and into
+// `headers`, when given, each one's offset from `bytes`: room the caller holds for
+// `count` of each (UnpackScratch), so that nothing grows or is zeroed per sample (the
+// test of a block's samples unpacks millions a frame). Returns false when the bytes refer
 // to what is not there (an apex `apexes` lacks): the sample must then count as dirty.
-bool UnpackSample(const std::uint8_t *bytes, std::uint32_t count, const FanApexes &apexes,
-                  std::vector<Segment> &segments, std::vector<std::uint8_t> &fanOf,
-                  std::vector<std::uint32_t> *headers = nullptr);
-
-// As UnpackSample, into room the caller holds for `count` segments, fans and (when given)
-// headers: no vector grows, nothing is zeroed first. The test of a block's samples
-// unpacks millions of samples a frame into scratch it keeps.
-bool UnpackSampleTo(const std::uint8_t *bytes, std::uint32_t count, const FanApexes &apexes, Segment *segments,
-                    std::uint8_t *fanOf, std::uint32_t *headers = nullptr);
+bool UnpackSample(const std::uint8_t *bytes, std::uint32_t count, const FanApexes &apexes, Segment *segments,
+                  std::uint8_t *fanOf, std::uint32_t *headers = nullptr);
 
 // Scratch for unpacking samples that only grows: sized once for the largest sample (or
 // block) seen, then reused as it is.
