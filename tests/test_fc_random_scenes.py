@@ -14,15 +14,19 @@ from fcutil import TOP
 SCRIPT = TOP / "scripts" / "fc-random-scenes"
 
 
-@pytest.mark.parametrize("first, last, options", [(1, 16, []), (17, 24, ["--threads", "2", "--aa"])],
-                         ids=["one-thread", "two-threads-aa"])
-def test_random_scenes_render_the_same_with_fc(first, last, options, tmp_path):
-    done = subprocess.run(["/usr/bin/python3", str(SCRIPT), "--seeds", f"{first}-{last}", *options,
-                           "--keep", str(tmp_path)], capture_output=True, text=True, timeout=1200)
+@pytest.mark.parametrize("first, last, frames, options",
+                         [(1, 16, 4, []), (17, 24, 4, ["--threads", "2", "--aa"]),
+                          # frames numbered f01.tga on; blocks whose cones grow frame after frame
+                          (25, 27, 14, ["--threads", "2"])],
+                         ids=["one-thread", "two-threads-aa", "fourteen-frames"])
+def test_random_scenes_render_the_same_with_fc(first, last, frames, options, tmp_path):
+    done = subprocess.run(["/usr/bin/python3", str(SCRIPT), "--seeds", f"{first}-{last}", "--frames", str(frames),
+                           *options, "--keep", str(tmp_path)], capture_output=True, text=True, timeout=1200)
     assert done.returncode == 0, done.stdout[-3000:] + done.stderr[-3000:]
     # Every seed was rendered and compared, every frame identical.
+    zeros = ", ".join(["0"] * frames)
     for seed in range(first, last + 1):
-        assert f"seed {seed}: pixels differing per frame [0, 0, 0, 0]" in done.stdout, done.stdout
+        assert f"seed {seed}: pixels differing per frame [{zeros}]" in done.stdout, done.stdout
 
 
 def test_a_differing_frame_fails_and_names_its_seed(tmp_path):
