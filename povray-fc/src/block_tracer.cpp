@@ -484,7 +484,7 @@ void BlockTracer::End() {
         // grown into them (BlockRecord::grownSegments); otherwise they are built when needed.
         std::size_t fresh = 0;
         for (const auto &range : tracedSegments_) fresh += range.second;
-        if (old_ && old_->fansBuilt && old_->grownSegments + fresh <= 2 * live) {
+        if (old_ && old_->ConesMayGrowBy(fresh, live)) {
             record->groupFans = std::move(old_->groupFans);  // old_ is replaced below
             GrowRecordFans(*record, nextSegments_.data(), nextFanOf_.data(), tracedSegments_, tracedGroups_);
             BuildGroupIndex(*record, &old_->groupIndex, &keptFromOld_);
@@ -607,7 +607,7 @@ bool BlockTracer::UpdateInPlace() {
     std::size_t live = 0;
     for (const StoredSample &s : r.samples)
         if (s.segmentCount != StoredSample::kEverything) live += s.segmentCount;
-    if (r.grownSegments + fresh <= 2 * live) {
+    if (r.ConesMayGrowBy(fresh, live)) {
         GrowRecordFans(r, nextSegments_.data(), nextFanOf_.data(), tracedSegments_, tracedGroups_);
         r.grownSegments += fresh;
     } else {

@@ -13,18 +13,21 @@ void AddSampleFlags(GroupIndex &index, const StoredSample &s) {
     if (s.segmentCount == StoredSample::kEverything) flags |= GroupIndex::kEverything;
 }
 
+// What a segment that ended on `unit` (a Segment::unit value) gives its sample's group.
+void AddUnit(GroupIndex &index, std::uint32_t group, std::uint32_t unit) {
+    if (unit == Segment::kNoUnit) return;
+    index.unitMask[group] |= UnitMaskBit(unit & ~Segment::kOpaqueBlocker);
+    if (unit & Segment::kOpaqueBlocker) index.flags[group] |= GroupIndex::kOpaqueBlockerTest;
+}
+
 // The unit mask and opaque-blocker flag its packed segments give it.
 void AddSampleUnits(BlockRecord &record, const StoredSample &s) {
     if (s.segmentCount == StoredSample::kEverything) return;
-    std::uint8_t &flags = record.groupIndex.flags[s.group];
-    std::uint64_t &mask = record.groupIndex.unitMask[s.group];
     const std::uint8_t *p = record.packed.data() + s.firstByte;
     for (std::uint32_t k = 0; k < s.segmentCount; ++k) {
         std::uint32_t unit;
         p = NextPacked(p, unit);
-        if (unit == Segment::kNoUnit) continue;
-        mask |= UnitMaskBit(unit & ~Segment::kOpaqueBlocker);
-        if (unit & Segment::kOpaqueBlocker) flags |= GroupIndex::kOpaqueBlockerTest;
+        AddUnit(record.groupIndex, s.group, unit);
     }
 }
 
@@ -59,23 +62,21 @@ void BuildRecordFans(BlockRecord &record) {
     scratch.Fit(total);
     members.resize(record.GroupCount());
     for (std::vector<std::uint32_t> &m : members) m.clear();
-    // What each group's segments ended on, read from them as they are unpacked.
-    thread_local std::vector<std::uint64_t> unitMask;
-    thread_local std::vector<std::uint8_t> blockerTest;
-    unitMask.assign(record.GroupCount(), 0);
-    blockerTest.assign(record.GroupCount(), 0);
+    // The group index takes each group's units from the segments as they are unpacked.
+    IndexSamplesByGroup(record);
+    GroupIndex &index = record.groupIndex;
     std::uint32_t first = 0;
     for (StoredSample &s : record.samples) {
         if (s.segmentCount == StoredSample::kEverything) continue;
         Segment *segments = scratch.segments.data() + first;
-        if (!record.UnpackOrForget(s, segments, scratch.fans.data() + first)) continue;
+        if (!record.UnpackOrForget(s, segments, scratch.fans.data() + first)) {
+            AddSampleFlags(index, s);  // it depends on everything now
+            continue;
+        }
         std::vector<std::uint32_t> &m = members[s.group];
         for (std::uint32_t k = 0; k < s.segmentCount; ++k) {
             m.push_back(first + k);
-            const std::uint32_t unit = segments[k].unit;
-            if (unit == Segment::kNoUnit) continue;
-            unitMask[s.group] |= UnitMaskBit(unit & ~Segment::kOpaqueBlocker);
-            if (unit & Segment::kOpaqueBlocker) blockerTest[s.group] = GroupIndex::kOpaqueBlockerTest;
+            AddUnit(index, s.group, segments[k].unit);
         }
         first += s.segmentCount;
     }
@@ -84,13 +85,8 @@ void BuildRecordFans(BlockRecord &record) {
     for (std::size_t g = 0; g < record.GroupCount(); ++g)
         record.groupFans.push_back(BuildFansOf(scratch.segments.data(), scratch.fans.data(), record.apexes, members[g]));
     record.fans = MergeFans(record.groupFans, record.apexes);
-    IndexSamplesByGroup(record);
     record.unitMask = 0;  // exact again, where updates only ever added bits
-    for (std::size_t g = 0; g < record.GroupCount(); ++g) {
-        record.groupIndex.unitMask[g] = unitMask[g];
-        record.groupIndex.flags[g] |= blockerTest[g];
-        record.unitMask |= unitMask[g];
-    }
+    for (std::uint64_t mask : index.unitMask) record.unitMask |= mask;
     record.fansBuilt = true;
     record.grownSegments = 0;
 }

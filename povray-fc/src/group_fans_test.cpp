@@ -229,13 +229,19 @@ void AddSampleEndingOn(BlockRecord &record, int x, int y, const std::vector<std:
     record.samples.push_back(s);
 }
 
+// An empty record of a 16 x 16 block: 2 x 2 groups.
+BlockRecord FourGroupBlock() {
+    BlockRecord record;
+    record.right = 15;
+    record.bottom = 15;
+    return record;
+}
+
 TEST(GroupIndex, EachGroupListsItsSamplesAndHoldsWhatTheyHold) {
     // Invariant: a group's flags and unit mask hold every sample's of the group (Begin
     // passes over a group whose don't concern the frame), and every sample is listed once,
     // under its group.
-    BlockRecord record;
-    record.right = 15;
-    record.bottom = 15;  // 2 x 2 groups
+    BlockRecord record = FourGroupBlock();
     AddSampleEndingOn(record, 1, 1, {3, Segment::kNoUnit});
     AddSampleEndingOn(record, 9, 2, {5, 7 | Segment::kOpaqueBlocker});
     AddSampleEndingOn(record, 2, 9, {40000});
@@ -276,17 +282,13 @@ TEST(GroupIndex, ARecordBuiltFromAnOldOneCarriesWhatItsKeptSamplesHeld) {
     // A replayed block whose samples came in another order gets a new record: the samples
     // kept from the old one are not read again, their groups' masks and blocker flags
     // carry over; the traced ones are read. The cones' build reads every segment anew.
-    BlockRecord old;
-    old.right = 15;
-    old.bottom = 15;  // 2 x 2 groups
+    BlockRecord old = FourGroupBlock();
     AddSampleEndingOn(old, 1, 1, {3, Segment::kNoUnit});
     AddSampleEndingOn(old, 9, 2, {5, 7 | Segment::kOpaqueBlocker});
     AddSampleEndingOn(old, 2, 9, {8});
     BuildGroupIndex(old);
 
-    BlockRecord record;
-    record.right = 15;
-    record.bottom = 15;
+    BlockRecord record = FourGroupBlock();
     AddSampleEndingOn(record, 9, 2, {5, 7 | Segment::kOpaqueBlocker});  // kept
     AddSampleEndingOn(record, 2, 9, {40000});                            // traced anew
     AddSampleEndingOn(record, 1, 1, {3, Segment::kNoUnit});              // kept

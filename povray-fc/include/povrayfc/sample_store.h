@@ -94,6 +94,10 @@ struct BlockRecord {
     // built afresh (when next needed). Counting over frames, not per frame, keeps a block that is
     // partly traced again every frame from paying a whole build every frame.
     std::size_t grownSegments = 0;
+    // Whether the cones may grow by `fresh` more segments of a record that holds `live`.
+    bool ConesMayGrowBy(std::size_t fresh, std::size_t live) const {
+        return fansBuilt && grownSegments + fresh <= 2 * live;
+    }
     bool hasEverything = false; // a sample depends on everything (any change dirties it)
     bool hasOrderSensitive = false;  // a sample is StoredSample::orderSensitive
     // UnitMaskBit of every unit a segment of the record ended on (a superset once samples
