@@ -196,8 +196,9 @@ bool BlockTracer::Begin(std::uint32_t serial, int left, int top, int right, int 
     if (old_ && plan.everythingDirty) old_ = nullptr;
     if (!old_) return false;
 
-    // A new order of the scene's objects dirties the order-sensitive samples alone; a changed
-    // unit, the samples with a segment that ended on it.
+    // A new order of the scene's objects concerns the order-sensitive samples alone (their
+    // tied searches are run again); a changed unit, the samples with a segment that ended
+    // on it.
     const bool orderMatters = plan.orderChanged && old_->hasOrderSensitive;
     const bool unitsChanged = plan.changedUnits != nullptr && (old_->unitMask & plan.changedUnitMask) != 0;
     const bool translucentChanged = plan.translucentChanges != nullptr && !plan.translucentChanges->Empty();
@@ -246,7 +247,7 @@ bool BlockTracer::Begin(std::uint32_t serial, int left, int top, int right, int 
         // Group by group, passing over those nothing of this frame concerns (group_index.h).
         const GroupIndex &index = old_->groupIndex;
         oldDirty_.assign(n, 0);
-        std::uint64_t tested = 0, cleared = 0;
+        std::uint64_t tested = 0, cleared = 0, tiedReplayed = 0, tiedKept = 0, searchesReplayed = 0;
         for (std::size_t g = 0; g < groupReach_.size(); ++g) {
             const std::uint8_t flags = index.flags[g];
             const bool everything = (flags & GroupIndex::kEverything) != 0;
@@ -257,7 +258,7 @@ bool BlockTracer::Begin(std::uint32_t serial, int left, int top, int right, int 
             for (std::uint32_t k = index.Begin(g); k < index.End(g); ++k) {
                 const std::uint32_t i = index.samples[k];
                 StoredSample &s = old_->samples[i];
-                bool dirty = s.segmentCount == StoredSample::kEverything || (order && s.orderSensitive) ||
+                bool dirty = s.segmentCount == StoredSample::kEverything ||
                              (units && EndsOnChangedUnit(s, *old_, plan)) ||
                              (blocked && BlockedTestMayMeet(s, *old_, *plan.translucentChanges));
                 if (!dirty && groupReaches_[g]) {
@@ -278,12 +279,23 @@ bool BlockTracer::Begin(std::uint32_t serial, int left, int top, int right, int 
                         }
                     }
                 }
+                // Clean but for the order of the objects: its tied searches, run again, must
+                // find what they found (tie_replay.h).
+                if (!dirty && order && s.orderSensitive) {
+                    ++tiedReplayed;
+                    dirty = !TiedSearchesHold(old_->TiedSearchesOf(s), tieReplayer_, plan.unitIds, plan.unitCount,
+                                              searchesReplayed);
+                    if (!dirty) ++tiedKept;
+                }
                 oldDirty_[i] = dirty;
                 anyDirty |= dirty;
             }
         }
         plan.counters->testedSamples += tested;
         plan.counters->clearedSamples += cleared;
+        plan.counters->tiedSamplesReplayed += tiedReplayed;
+        plan.counters->tiedSamplesKept += tiedKept;
+        plan.counters->tiedSearchesReplayed += searchesReplayed;
     }
     if (!anyDirty) {
         plan.counters->reusedPixels += area;
@@ -390,6 +402,7 @@ void BlockTracer::EndSample(double x, double y, const float rgbft[5]) {
     } else {
         s.firstByte = std::uint32_t(recorder_.FirstByte());
         s.segmentCount = std::uint32_t(recorder_.Count());
+        if (s.orderSensitive) recorder_.PackTies();
         for (std::size_t k = recorder_.First(); k < nextSegments_.size(); ++k)
             if (nextSegments_[k].unit != Segment::kNoUnit) nextUnitMask_ |= UnitMaskBit(nextSegments_[k].UnitId());
     }
@@ -519,7 +532,7 @@ std::size_t BlockTracer::GatherSegments(BlockRecord &record) {
         const StoredSample &s = record.samples[i];
         if (s.segmentCount == StoredSample::kEverything) continue;
         const BlockRecord &from = keptFromOld_[i] ? *old_ : next_;
-        packedSizes_[i] = PackedSize(from.packed.data() + s.firstByte, s.segmentCount);
+        packedSizes_[i] = from.SampleBytes(s);
         total += packedSizes_[i];
         live += s.segmentCount;
     }
@@ -559,7 +572,7 @@ bool BlockTracer::UpdateInPlace() {
         const StoredSample &traced = next_.samples[i];
         StoredSample &stored = r.samples[i];
         const bool storedHasSegments = stored.segmentCount != StoredSample::kEverything;
-        const std::size_t oldBytes = storedHasSegments ? PackedSize(r.packed.data() + stored.firstByte, stored.segmentCount) : 0;
+        const std::size_t oldBytes = r.SampleBytes(stored);
         everythingReplaced |= !storedHasSegments;
         orderSensitiveReplaced |= stored.orderSensitive && !traced.orderSensitive;
         r.hasOrderSensitive |= traced.orderSensitive;
@@ -570,7 +583,7 @@ bool BlockTracer::UpdateInPlace() {
             AddToGroupIndex(r, stored);  // built with the cones, which an update in place needs
             continue;
         }
-        const std::size_t newBytes = PackedSize(next_.packed.data() + traced.firstByte, traced.segmentCount);
+        const std::size_t newBytes = next_.SampleBytes(traced);
         std::size_t at = stored.firstByte;
         if (storedHasSegments && newBytes <= oldBytes) {
             r.deadBytes += oldBytes - newBytes;
@@ -627,7 +640,7 @@ void BlockTracer::CompactSegments(BlockRecord &record) {
         if (s.segmentCount == StoredSample::kEverything) continue;
         const std::size_t at = packed.size();
         const std::uint8_t *first = record.packed.data() + s.firstByte;
-        packed.insert(packed.end(), first, first + PackedSize(first, s.segmentCount));
+        packed.insert(packed.end(), first, first + record.SampleBytes(s));
         s.firstByte = std::uint32_t(at);
     }
     record.packed.swap(packed);

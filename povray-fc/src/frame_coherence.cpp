@@ -236,6 +236,8 @@ void FrameCoherence::EndFrame(std::uint64_t raysTraced) {
         current_.samplesReused = counters_.reusedSamples.load();
         current_.samplesTested = counters_.testedSamples.load();
         current_.samplesCleared = counters_.clearedSamples.load();
+        current_.tiedSamplesReplayed = counters_.tiedSamplesReplayed.load();
+        current_.tiedSamplesKept = counters_.tiedSamplesKept.load();
         // Blocks this frame did not render missed its changes.
         if (store_) store_->ForgetUntouched();
         current_.storeBytes = store_ ? store_->MemoryBytes() : 0;

@@ -50,6 +50,19 @@ std::uint32_t UnitOf(const ToyScene &scene, const ToyBox *box) {
     return box ? std::uint32_t(box - scene.boxes.data()) : kUnitNothing;
 }
 
+// The toy's search for a camera ray's nearest box, nearer than `best`: like POV-Ray, the
+// first of two boxes at the same depth wins, here in scene order.
+void NearestBox(const ToyScene &scene, const double o[3], const double d[3], double &best, const ToyBox *&hit) {
+    for (const ToyBox &b : scene.boxes) {
+        const double t = Hit(b, o, d);
+        if (t < 0) continue;
+        NoteTieCandidate(t);
+        if (t < best) best = t, hit = &b;
+    }
+}
+
+constexpr std::uint8_t kToyCameraSearch = 1;  // the one search kind the toy can run again
+
 // One camera sample at image position (x, y): a ray along +z, the box it hits, and a
 // shadow ray from there straight up to the light (to the nearest box in its way). Records
 // the rays like POV-Ray's hooks, each with the unit it ended on.
@@ -58,14 +71,11 @@ void TraceToy(const ToyScene &scene, double x, double y, float rgbft[5]) {
     double best = 1e30;
     const ToyBox *hit = nullptr;
     {
-        // Like POV-Ray, the first of two boxes at the same depth wins: in scene order.
         TieWatch ties(d, best);
-        for (const ToyBox &b : scene.boxes) {
-            const double t = Hit(b, o, d);
-            if (t < 0) continue;
-            NoteTieCandidate(t);
-            if (t < best) best = t, hit = &b;
-        }
+        if (ties.Recording()) ties.Describe(kToyCameraSearch, 0, o);
+        NearestBox(scene, o, d, best, hit);
+        // A box's id stands for its own hash.
+        ties.Found(UnitOf(scene, hit), hit ? hit->id : 0);
     }
     RecordRaySegment(o, d, hit ? best : 2e10, UnitOf(scene, hit));
     std::memset(rgbft, 0, 5 * sizeof(float));
@@ -100,6 +110,28 @@ void TraceToy(const ToyScene &scene, double x, double y, float rgbft[5]) {
         rgbft[2] = rhit ? float(rhit->id) : 0.5f;
     }
 }
+
+// The toy's camera search run again in the frame being rendered, as the patch layer runs
+// POV-Ray's (the reflection's search is not described: never run again).
+class ToyReplayer : public TieReplayer {
+  public:
+    explicit ToyReplayer(const ToyScene &scene) : scene_(scene) {}
+    bool Replay(const TiedSearch &search, double &depth, std::uint32_t &unitIndex, std::uint64_t &objectHash) override {
+        if (search.kind != kToyCameraSearch) return false;
+        depth = search.start;
+        const ToyBox *hit = nullptr;
+        NearestBox(scene_, search.origin, search.direction, depth, hit);
+        unitIndex = UnitOf(scene_, hit);
+        objectHash = hit ? hit->id : 0;
+        return true;
+    }
+
+  private:
+    const ToyScene &scene_;
+};
+
+// Whether RenderFc gives its tracer a replayer (as the patched trace task does).
+bool toyReplays = true;
 
 using Image = std::vector<float>;  // 5 floats a pixel
 
@@ -198,6 +230,8 @@ FcResult RenderFc(const ToyScene &scene, int frame, SceneEffects effects = {}, s
     FcResult r;
     r.image.assign(std::size_t(kW) * kH * 5, 0.0f);
     BlockTracer tracer(fc.Plan());
+    ToyReplayer replayer(scene);
+    if (toyReplays) tracer.SetTieReplayer(&replayer);
     std::uint32_t serial = 0;
     for (int by = 0; by < kH; by += kBlock)
         for (int bx = 0; bx < kW; bx += kBlock, ++serial) {
@@ -245,6 +279,7 @@ FcResult RenderFc(const ToyScene &scene, int frame, SceneEffects effects = {}, s
 class FrameCoherenceRun : public ::testing::Test {
   protected:
     void SetUp() override {
+        toyReplays = true;
         FrameCoherence &fc = FrameCoherence::Get();
         fc.BeginFrame(false, ToySetup(0), nullptr, {});
         fc.EndFrame(0);
@@ -719,30 +754,41 @@ ToyScene Coincident(bool redFirst, double moverX) {
 
 TEST_F(FrameCoherenceRun, SwappedCoincidentObjectsAreTracedAgain) {
     // Invariant: the same objects in another order are a change for the samples whose
-    // nearest hit was a tie, and for them alone.
+    // nearest hit was a tie, and for them alone: run again, their tied searches find the
+    // other box.
     const ToyScene first = Coincident(true, 0), second = Coincident(false, 0);
     RenderFc(first, 1);
     const FcResult r = RenderFc(second, 2);
     EXPECT_EQ(r.image, RenderFull(second));
     EXPECT_GT(r.tracedSamples, 0u);
     EXPECT_LT(r.tracedSamples, 60u);  // the tied box's samples (8 pixels, their AA borders)
+    EXPECT_GT(FrameCoherence::Get().LastStats().tiedSamplesReplayed, 0u);
 }
 
-TEST_F(FrameCoherenceRun, TiedSamplesAreTracedAgainWhenAnythingMovesAndNotOtherwise) {
-    // A change far from the tie may reshape POV-Ray's bounding tree: the tied samples are
-    // traced again. A frame where nothing moved keeps them.
+TEST_F(FrameCoherenceRun, TiedSamplesAreKeptWhenTheirSearchesFindTheSameAfterAFarChange) {
+    // A change far from the tie may reshape POV-Ray's bounding tree. The tied samples'
+    // searches are run again: here the same box still wins, so they are kept. A frame
+    // where nothing moved keeps them without a search.
     RenderFc(Coincident(true, 0), 1);
     const FcResult still = RenderFc(Coincident(true, 0), 2);
     EXPECT_EQ(still.tracedSamples, 0u);
+    EXPECT_EQ(FrameCoherence::Get().LastStats().tiedSamplesReplayed, 0u);
     const ToyScene moved = Coincident(true, 0.5);
     const FcResult r = RenderFc(moved, 3);
     EXPECT_EQ(r.image, RenderFull(moved));
-    const FcResult withoutTies = [&] {
+    const FrameStats stats = FrameCoherence::Get().LastStats();
+    EXPECT_GT(stats.tiedSamplesKept, 0u);
+    EXPECT_LE(stats.tiedSamplesKept, stats.tiedSamplesReplayed);
+    // Without a replayer (or for a search that cannot be run again) they are traced again.
+    const FcResult unreplayed = [&] {
         SetUp();
-        RenderFc(Frame(0), 1);
-        return RenderFc(Frame(0.5), 2);
+        toyReplays = false;
+        RenderFc(Coincident(true, 0), 1);
+        return RenderFc(moved, 2);
     }();
-    EXPECT_GT(r.tracedSamples, withoutTies.tracedSamples);
+    EXPECT_EQ(unreplayed.image, r.image);
+    EXPECT_EQ(FrameCoherence::Get().LastStats().tiedSamplesKept, 0u);
+    EXPECT_GE(unreplayed.tracedSamples, r.tracedSamples + stats.tiedSamplesKept);
 }
 
 }  // namespace

@@ -37,7 +37,7 @@ std::string FrameStats::LogLine() const {
 std::string FrameStats::CsvHeader() {
     return "frame,clock,coherent,full_reason,pixels,traced,reused,changed_hulls,samples_traced,"
            "samples_reused,rays,bookkeeping_s,store_bytes,render_s,samples_tested,samples_cleared,changed_units,"
-           "over_budget_blocks";
+           "over_budget_blocks,tied_samples_replayed,tied_samples_kept";
 }
 
 std::string FrameStats::CsvRow() const {
@@ -46,7 +46,8 @@ std::string FrameStats::CsvRow() const {
     row << frame << ',' << clock << ',' << (coherent ? 1 : 0) << ',' << CsvQuoted(fullReason)
         << ',' << pixels << ',' << traced << ',' << reused << ',' << changedHulls << ',' << samplesTraced << ',' << samplesReused
         << ',' << rays << ',' << bookkeepingSeconds << ',' << storeBytes << ',' << renderSeconds << ','
-        << samplesTested << ',' << samplesCleared << ',' << changedUnits << ',' << overBudgetBlocks;
+        << samplesTested << ',' << samplesCleared << ',' << changedUnits << ',' << overBudgetBlocks << ','
+        << tiedSamplesReplayed << ',' << tiedSamplesKept;
     return row.str();
 }
 

@@ -23,6 +23,7 @@
 #include "povrayfc/frame_plan.h"
 #include "povrayfc/ray_recording.h"
 #include "povrayfc/sample_store.h"
+#include "povrayfc/tie_replay.h"
 
 namespace povrayfc {
 
@@ -30,6 +31,9 @@ class BlockTracer {
   public:
     // Reads the plan of the frame each block is rendered in (the plan must outlive it).
     explicit BlockTracer(const FramePlan &plan) : plan_(&plan) {}
+    // Runs tied searches again for this thread (tie_replay.h); without one, an
+    // order-sensitive sample is traced again whenever the order of the objects changed.
+    void SetTieReplayer(TieReplayer *replayer) { tieReplayer_ = replayer; }
 
     // Starts block `serial` (POV-Ray's block number) covering [left..right]x[top..bottom].
     // Returns true when the stored block can be sent as it is: then StoredPixel() gives
@@ -89,6 +93,7 @@ class BlockTracer {
     static void CompactSegments(BlockRecord &record);
 
     const FramePlan *plan_;
+    TieReplayer *tieReplayer_ = nullptr;
     bool active_ = false;   // this block is under fc (mode != kIdle)
     bool endedActive_ = false;  // End() ended a block under fc (SendOnlyChanged)
     bool record_ = false;   // mode kRecord: samples and segments are kept

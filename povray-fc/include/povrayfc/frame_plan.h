@@ -26,10 +26,14 @@ struct FrameCounters {
     // Blocks whose record the memory budget left out: traced in full when next rendered;
     // and the samples traced in blocks it had left out.
     std::atomic<std::uint64_t> overBudgetBlocks{0}, unrecordedSamples{0};
+    // Order-sensitive samples clean but for the order of the objects, whose tied searches
+    // were run again (tie_replay.h); those kept; and the searches run.
+    std::atomic<std::uint64_t> tiedSamplesReplayed{0}, tiedSamplesKept{0}, tiedSearchesReplayed{0};
 
     void Reset() {
         tracedPixels = reusedPixels = tracedSamples = reusedSamples = reusedBlocks = replayedBlocks = 0;
         testedSamples = clearedSamples = overBudgetBlocks = unrecordedSamples = 0;
+        tiedSamplesReplayed = tiedSamplesKept = tiedSearchesReplayed = 0;
     }
 };
 
@@ -67,7 +71,8 @@ struct FramePlan {
     const ChangeIndex *translucentChanges = nullptr;
     // The ordered list of the scene's objects differs from the last frame's (something
     // changed, appeared, vanished or moved in it): the bounding tree may have another
-    // shape, so every order-sensitive sample is dirty (tie_watch.h).
+    // shape, so an order-sensitive sample is kept only when its tied searches, run again,
+    // find what they found (tie_watch.h, tie_replay.h).
     bool orderChanged = false;
     // This frame's stamp among the frames whose changes samples keep clearances from (0:
     // none is kept or trusted this frame), and how far the changes moved since each.

@@ -20,6 +20,7 @@
 #include "povrayfc/scene_signature.h"
 #include "povrayfc/segment.h"
 #include "povrayfc/segment_packing.h"
+#include "povrayfc/tie_replay.h"
 
 namespace povrayfc {
 
@@ -45,6 +46,8 @@ class SampleRecorder {
         everything_ = false;
         deep_ = false;
         orderSensitive_ = false;
+        ties_.clear();
+        tiesComplete_ = true;
     }
     // A ray that ended on the frame's unit `unit` (the index the parser wrote into what it
     // hit, or kUnitNothing).
@@ -88,8 +91,34 @@ class SampleRecorder {
     }
     void MarkEverything() { everything_ = true; }
     // One of the sample's searches for a nearest intersection ended in a tie that the order
-    // of the scene's objects decided (tie_watch.h).
-    void MarkOrderSensitive() { orderSensitive_ = true; }
+    // of the scene's objects decided (tie_watch.h), and it cannot be run again.
+    void MarkOrderSensitive() {
+        orderSensitive_ = true;
+        tiesComplete_ = false;
+    }
+    // The same for a search that can be run again (tie_replay.h): `search` found the object
+    // the parser gave unit index `unitIndex` (kUnitNothing: none). An object without a hash
+    // of its own could not be told from another part of its unit.
+    void AddTiedSearch(TiedSearch search, std::uint32_t unitIndex) {
+        orderSensitive_ = true;
+        if (!tiesComplete_) return;
+        if (unitIndex == kUnitNothing) {
+            search.unit = Segment::kNoUnit;
+        } else if (unitIndex < unitCount_ && unitIds_[unitIndex] < Segment::kOpaqueBlocker && search.objectHash != 0) {
+            search.unit = unitIds_[unitIndex];
+        } else {
+            tiesComplete_ = false;
+            return;
+        }
+        if (ties_.size() >= kMaxTiedSearches) {
+            tiesComplete_ = false;
+            return;
+        }
+        ties_.push_back(search);
+    }
+    // Packs the order-sensitive sample's tied searches after its segments: the sample's
+    // last bytes (BlockRecord::SampleBytes).
+    void PackTies() { PackTiedSearches(ties_, tiesComplete_, *packed_); }
 
     bool Everything() const { return everything_; }
     bool OrderSensitive() const { return orderSensitive_; }
@@ -143,6 +172,8 @@ class SampleRecorder {
     bool everything_ = false;
     bool deep_ = false;  // a reflected or refracted ray was recorded in this sample
     bool orderSensitive_ = false;
+    std::vector<TiedSearch> ties_;  // the sample's tied searches, in the order they ran
+    bool tiesComplete_ = true;      // every tied search of the sample is in ties_
 };
 
 namespace detail {

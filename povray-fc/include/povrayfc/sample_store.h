@@ -30,6 +30,7 @@
 #include "povrayfc/segment.h"
 #include "povrayfc/segment_fans.h"
 #include "povrayfc/segment_packing.h"
+#include "povrayfc/tie_replay.h"
 
 namespace povrayfc {
 
@@ -49,7 +50,8 @@ struct StoredSample {
     // was padding.
     std::uint32_t group : 31;
     // A search for one of its rays' nearest intersections ended in a tie the order of the
-    // scene's objects decided (tie_watch.h): traced again whenever that order may differ.
+    // scene's objects decided (tie_watch.h): whenever that order may differ, its tied
+    // searches, packed after its segments, are run again (tie_replay.h).
     std::uint32_t orderSensitive : 1;
     // Found clean in the frame stamped clearStamp (0: never, or traced since): its segments
     // of the bundle classes in the low BlockHulls::kClassBits bits of `clearance` (every
@@ -122,6 +124,19 @@ struct BlockRecord {
     bool Covers(int l, int t, int r, int b) const { return l == left && t == top && r == right && b == bottom; }
     const float *Pixel(int x, int y) const {
         return &pixels[(std::size_t(y - top) * std::size_t(Width()) + std::size_t(x - left)) * 5];
+    }
+    // The bytes of `packed` sample `s` holds from its firstByte: its segments and, when it
+    // is order-sensitive, its tied searches after them (tie_replay.h).
+    std::size_t SampleBytes(const StoredSample &s) const {
+        if (s.segmentCount == StoredSample::kEverything) return 0;
+        const std::uint8_t *first = packed.data() + s.firstByte;
+        const std::size_t segments = PackedSize(first, s.segmentCount);
+        return s.orderSensitive ? segments + TiedSearchesBytes(first + segments) : segments;
+    }
+    // An order-sensitive sample's tied searches (tie_replay.h).
+    const std::uint8_t *TiedSearchesOf(const StoredSample &s) const {
+        const std::uint8_t *first = packed.data() + s.firstByte;
+        return first + PackedSize(first, s.segmentCount);
     }
     // Unpacks sample `s`'s segments into `segments` and their bundles into `fanOf` (room
     // for s.segmentCount each: UnpackScratch), and, when given, each one's offset in

@@ -10,16 +10,20 @@
 // nearest, so an object can reach a hair outside its own box.
 //
 // A sample one of whose searches ended in such a tie is "order-sensitive" (its recorder
-// is told); frame coherence traces it again in every frame whose ordered list of objects
-// differs from the last frame's (anything that changes, appears, vanishes or moves in the
-// list can reshape the tree), whatever else its rays met. Ties are rare, so this costs
-// next to nothing where there are none.
+// is told). In a frame whose ordered list of objects differs from the last frame's
+// (anything that changes, appears, vanishes or moves in the list can reshape the tree),
+// such a sample none of whose segments meets a change has its tied searches run again
+// (tie_replay.h) and is kept when they find what they found; a search the hooks did not
+// describe cannot be run again, and its sample is traced again in every such frame. Ties
+// are rare, so this costs next to nothing where there are none.
 //
 // The search hooks call this as follows (one per scene-level search, on the stack):
 //
 //   TieWatch watch(ray.Direction, bestisect.Depth);   // judges when it goes out of scope
+//   DescribeTieSearch(kind, flags, ray.Origin);        // to run it again (tie_replay.h)
 //   ... for every object the search intersects:  NoteTieCandidate(depth)
 //   ... when it stops at a box or cell it does not enter: NoteTieSkipped(entry, magnitude)
+//   NoteTieSearchFound(unit, hash)   // before the watch goes: what it found, if described
 //
 // The notes reach the innermost watch of the thread. Every call is one thread-local test
 // when the thread is not recording a sample.
@@ -30,6 +34,7 @@
 #include <limits>
 
 #include "povrayfc/ray_recording.h"
+#include "povrayfc/tie_replay.h"
 
 namespace povrayfc {
 
@@ -52,6 +57,8 @@ class TieWatch {
         direction_[1] = direction[1];
         direction_[2] = direction[2];
         nearest_ = second_ = skippedReach_ = std::numeric_limits<double>::infinity();
+        search_.start = best;
+        described_ = found_ = false;
         // The thread's innermost watch until the destructor restores the outer one.
 #if defined(__GNUC__) && !defined(__clang__) && __GNUC__ >= 12
 #pragma GCC diagnostic push
@@ -65,10 +72,40 @@ class TieWatch {
     ~TieWatch() {
         if (!recorder_) return;
         detail::tlsTieWatch = outer_;
-        if (Tied(best_)) recorder_->MarkOrderSensitive();
+        if (!Tied(best_)) return;
+        if (described_ && found_) {
+            search_.depth = best_;
+            recorder_->AddTiedSearch(search_, foundUnit_);
+        } else {
+            recorder_->MarkOrderSensitive();
+        }
     }
     TieWatch(const TieWatch &) = delete;
     TieWatch &operator=(const TieWatch &) = delete;
+
+    // Whether the thread records a sample: only then do Describe and Found matter.
+    bool Recording() const { return recorder_ != nullptr; }
+    // What the search is, to run it again (tie_replay.h): the conditions it searches with
+    // (`kind`, numbered by the caller), the ray's flags, and its origin (the direction was
+    // given to the constructor). Call before the search.
+    void Describe(std::uint8_t kind, std::uint16_t rayFlags, const double origin[3]) {
+        if (!recorder_) return;
+        search_.kind = kind;
+        search_.rayFlags = rayFlags;
+        for (int i = 0; i < 3; ++i) {
+            search_.origin[i] = origin[i];
+            search_.direction[i] = direction_[i];
+        }
+        described_ = true;
+    }
+    // What the search found: the unit index the parser wrote into the object (kUnitNothing
+    // when none) and the object's own hash. Call after the search, before the watch goes.
+    void Found(std::uint32_t unitIndex, std::uint64_t objectHash) {
+        if (!recorder_) return;
+        foundUnit_ = unitIndex;
+        search_.objectHash = objectHash;
+        found_ = true;
+    }
 
     // An object's nearest intersection at `depth`, whether or not it became the best.
     void Candidate(double depth) {
@@ -116,6 +153,9 @@ class TieWatch {
     TieWatch *outer_;
     double direction_[3];
     double nearest_, second_, skippedReach_;
+    TiedSearch search_;
+    std::uint32_t foundUnit_;
+    bool described_, found_;
 };
 
 // From the hooks inside a search (see above): no-ops unless a watch is open on this thread.
@@ -125,6 +165,14 @@ inline void NoteTieCandidate(double depth) {
 }
 inline void NoteTieSkipped(double entry, double magnitude) {
     if (detail::tlsTieWatch) detail::tlsTieWatch->Skipped(entry, magnitude);
+}
+// From the hook that describes a search (fc-scene's tie_searches.h): what the innermost
+// watch's search is, and, when it is done, what it found (TieWatch::Describe, Found).
+inline void DescribeTieSearch(std::uint8_t kind, std::uint16_t rayFlags, const double origin[3]) {
+    if (detail::tlsTieWatch) detail::tlsTieWatch->Describe(kind, rayFlags, origin);
+}
+inline void NoteTieSearchFound(std::uint32_t unitIndex, std::uint64_t objectHash) {
+    if (detail::tlsTieWatch) detail::tlsTieWatch->Found(unitIndex, objectHash);
 }
 // The same for a skipped float box as POV-Ray keeps it (lower corner and lengths); it holds
 // the boxes below it, so its magnitude bounds theirs.
