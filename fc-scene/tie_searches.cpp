@@ -89,27 +89,17 @@ bool SetRayFlagBits(Ray& ray, std::uint16_t bits)
 
 }  // namespace
 
-TieSearchHook::TieSearchHook(const Ray& ray, const Intersection& best, const RayObjectCondition& precondition,
-                             const RayObjectCondition& postcondition) :
-	best_(NULL)
+void TieSearchHook::Describe() const
 {
-	if(TieWatchOpen() == false)
-		return;
-	const std::uint8_t kind = SearchKind(precondition, postcondition);
+	// Another kind of search stays undescribed: its sample is traced again.
+	const std::uint8_t kind = SearchKind(precondition_, postcondition_);
 	if(kind == kUnknownSearch)
 		return;
-	DescribeTieSearch(kind, RayFlagBits(ray), ray.Origin);
-	best_ = &best;
-}
-
-TieSearchHook::~TieSearchHook()
-{
-	if(best_ == NULL)
-		return;
+	DescribeTieSearch(kind, RayFlagBits(*ray_), ray_->Origin);
 	// Which object the search found, if any: both searches start with none (TraceRay's
 	// intersection is new; the shadow loop clears it before each search), and
 	// FindIntersection sets it with the depth.
-	const pov::ObjectBase *object = best_->Object;
+	const pov::ObjectBase *object = best_.Object;
 	NoteTieSearchFound(object != NULL ? object->fcUnit : kUnitNothing, object != NULL ? object->fcHash : 0);
 }
 

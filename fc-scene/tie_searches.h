@@ -13,6 +13,7 @@
 #include <cstdint>
 
 #include "povrayfc/tie_replay.h"
+#include "povrayfc/tie_watch.h"
 
 namespace pov
 {
@@ -27,17 +28,23 @@ namespace povrayfc
 namespace scene
 {
 
-// Made on the stack of Trace::FindIntersection, after its TieWatch: describes the search
-// to the thread's innermost watch, and when it goes (the search done) tells the watch what
-// `best` holds. Costs a thread-local test when no sample is being recorded.
+// Made on the stack of Trace::FindIntersection, after its TieWatch: when it goes (the
+// search done) and the search ended in a tie, describes it to the watch and tells it what
+// `best` holds. Costs a thread-local test when no sample is being recorded, and a few
+// stores and compares a search when one is.
 class TieSearchHook
 {
 	public:
 		TieSearchHook(const pov::Ray& ray, const pov::Intersection& best, const pov::RayObjectCondition& precondition,
-		              const pov::RayObjectCondition& postcondition);
-		~TieSearchHook();
+		              const pov::RayObjectCondition& postcondition) :
+			ray_(TieWatchOpen() ? &ray : NULL), best_(best), precondition_(precondition), postcondition_(postcondition) { }
+		~TieSearchHook() { if(ray_ != NULL && TieSearchTied()) Describe(); }
 	private:
-		const pov::Intersection *best_;  // null when the search is not described
+		void Describe() const;
+		const pov::Ray *ray_;  // null when no sample is being recorded
+		const pov::Intersection& best_;
+		const pov::RayObjectCondition& precondition_;
+		const pov::RayObjectCondition& postcondition_;
 		TieSearchHook(const TieSearchHook&);
 		TieSearchHook& operator=(const TieSearchHook&);
 };

@@ -72,10 +72,13 @@ void TraceToy(const ToyScene &scene, double x, double y, float rgbft[5]) {
     const ToyBox *hit = nullptr;
     {
         TieWatch ties(d, best);
-        if (ties.Recording()) ties.Describe(kToyCameraSearch, 0, o);
         NearestBox(scene, o, d, best, hit);
-        // A box's id stands for its own hash.
-        ties.Found(UnitOf(scene, hit), hit ? hit->id : 0);
+        // As the hook does in POV-Ray: a tied search is described. A box's id stands for
+        // its own hash.
+        if (TieSearchTied()) {
+            DescribeTieSearch(kToyCameraSearch, 0, o);
+            NoteTieSearchFound(UnitOf(scene, hit), hit ? hit->id : 0);
+        }
     }
     RecordRaySegment(o, d, hit ? best : 2e10, UnitOf(scene, hit));
     std::memset(rgbft, 0, 5 * sizeof(float));

@@ -112,5 +112,88 @@ TEST(TieWatch, InnermostWatchTakesTheNotesAndNothingHappensWithoutRecording) {
     }));
 }
 
+// Runs `search` as one recorded sample of a frame with units 0..2 (ids 10, 11, 12) and
+// gives the tied searches it packed (false: packed as not replayable).
+template <class Search>
+bool PackedTies(Search search, std::vector<TiedSearch> &ties) {
+    std::vector<Segment> segments;
+    std::vector<std::uint8_t> fans;
+    std::vector<std::uint8_t> packed;
+    FanApexes apexes;
+    SampleRecorder recorder;
+    const std::uint32_t ids[3] = {10, 11, 12};
+    recorder.Begin(segments, fans, packed, apexes, ids, 3);
+    StartRecordingRays(recorder);
+    search();
+    StopRecordingRays();
+    EXPECT_TRUE(recorder.OrderSensitive());
+    recorder.PackTies();
+    EXPECT_EQ(packed.size(), TiedSearchesBytes(packed.data()));
+    return UnpackTiedSearches(packed.data(), ties);
+}
+
+TEST(TieWatch, ATiedSearchDescribedWhenDoneIsKeptToRunAgain) {
+    const double origin[3] = {1.0, -2.0, 0.5};
+    std::vector<TiedSearch> ties;
+    ASSERT_TRUE(PackedTies(
+        [&] {
+            double best = 1e7;
+            TieWatch watch(kDirection, best);
+            // Not tied yet: nothing to describe.
+            NoteTieCandidate(4.0);
+            best = 4.0;
+            EXPECT_FALSE(TieSearchTied());
+            NoteTieCandidate(4.0);
+            ASSERT_TRUE(TieSearchTied());
+            DescribeTieSearch(2, 0x11, origin);
+            NoteTieSearchFound(1, 0xabc);
+        },
+        ties));
+    ASSERT_EQ(ties.size(), 1u);
+    EXPECT_EQ(ties[0].kind, 2);
+    EXPECT_EQ(ties[0].rayFlags, 0x11);
+    EXPECT_EQ(ties[0].origin[1], -2.0);
+    EXPECT_EQ(ties[0].direction[2], kDirection[2]);
+    EXPECT_EQ(ties[0].start, 1e7);  // the bound it started from
+    EXPECT_EQ(ties[0].depth, 4.0);  // what it ended with
+    EXPECT_EQ(ties[0].unit, 11u);   // the unit's id, not the parser's index
+    EXPECT_EQ(ties[0].objectHash, 0xabcu);
+}
+
+TEST(TieWatch, ATiedSearchThatCannotBeToldApartOrRunAgainMakesTheSampleUnreplayable) {
+    std::vector<TiedSearch> ties;
+    const double origin[3] = {0, 0, 0};
+    auto tied = [&](auto describe) {
+        return [&, describe] {
+            double best = 3.0;
+            TieWatch watch(kDirection, best);
+            NoteTieCandidate(3.0);
+            NoteTieCandidate(3.0);
+            describe();
+        };
+    };
+    // Not described (another kind of search).
+    EXPECT_FALSE(PackedTies(tied([] {}), ties));
+    // Found an object without a hash of its own, or without a unit fc knows.
+    EXPECT_FALSE(PackedTies(tied([&] {
+                                DescribeTieSearch(1, 0, origin);
+                                NoteTieSearchFound(0, 0);
+                            }),
+                            ties));
+    EXPECT_FALSE(PackedTies(tied([&] {
+                                DescribeTieSearch(1, 0, origin);
+                                NoteTieSearchFound(7, 5);
+                            }),
+                            ties));
+    // Found nothing: kept, with no unit.
+    ASSERT_TRUE(PackedTies(tied([&] {
+                               DescribeTieSearch(1, 0, origin);
+                               NoteTieSearchFound(kUnitNothing, 0);
+                           }),
+                           ties));
+    ASSERT_EQ(ties.size(), 1u);
+    EXPECT_EQ(ties[0].unit, Segment::kNoUnit);
+}
+
 }  // namespace
 }  // namespace povrayfc

@@ -20,10 +20,12 @@
 // The search hooks call this as follows (one per scene-level search, on the stack):
 //
 //   TieWatch watch(ray.Direction, bestisect.Depth);   // judges when it goes out of scope
-//   DescribeTieSearch(kind, flags, ray.Origin);        // to run it again (tie_replay.h)
 //   ... for every object the search intersects:  NoteTieCandidate(depth)
 //   ... when it stops at a box or cell it does not enter: NoteTieSkipped(entry, magnitude)
-//   NoteTieSearchFound(unit, hash)   // before the watch goes: what it found, if described
+//   if (TieSearchTied()) {             // the search done, before the watch goes
+//       DescribeTieSearch(kind, flags, ray.Origin);   // to run it again (tie_replay.h)
+//       NoteTieSearchFound(unit, hash);               // and what it found
+//   }
 //
 // The notes reach the innermost watch of the thread. Every call is one thread-local test
 // when the thread is not recording a sample.
@@ -83,11 +85,9 @@ class TieWatch {
     TieWatch(const TieWatch &) = delete;
     TieWatch &operator=(const TieWatch &) = delete;
 
-    // Whether the thread records a sample: only then do Describe and Found matter.
-    bool Recording() const { return recorder_ != nullptr; }
     // What the search is, to run it again (tie_replay.h): the conditions it searches with
     // (`kind`, numbered by the caller), the ray's flags, and its origin (the direction was
-    // given to the constructor). Call before the search.
+    // given to the constructor).
     void Describe(std::uint8_t kind, std::uint16_t rayFlags, const double origin[3]) {
         if (!recorder_) return;
         search_.kind = kind;
@@ -127,6 +127,8 @@ class TieWatch {
     // its candidates: two candidates tied at the best depth, or something skipped close
     // enough behind it that its object may reach up to the best depth.
     bool Tied(double best) const { return (nearest_ == best && second_ == best) || skippedReach_ <= best; }
+    // The same for the search's best depth as it stands (its result, once it is done).
+    bool Tied() const { return Tied(best_); }
 
     // How far before its entry depth a skipped box's object may intersect the ray. A leaf's
     // float box is within 2^-23 of `magnitude` of the object's exact box (its corner and
@@ -166,8 +168,11 @@ inline void NoteTieCandidate(double depth) {
 inline void NoteTieSkipped(double entry, double magnitude) {
     if (detail::tlsTieWatch) detail::tlsTieWatch->Skipped(entry, magnitude);
 }
-// From the hook that describes a search (fc-scene's tie_searches.h): what the innermost
-// watch's search is, and, when it is done, what it found (TieWatch::Describe, Found).
+// From the hook that describes a search (fc-scene's tie_searches.h), once the search is
+// done: whether the innermost watch's search ended in a tie; if so, what it is and what
+// it found (TieWatch::Describe, Found). Only a tied search is described, so the hooks cost
+// next to nothing on every other.
+inline bool TieSearchTied() { return detail::tlsTieWatch != nullptr && detail::tlsTieWatch->Tied(); }
 inline void DescribeTieSearch(std::uint8_t kind, std::uint16_t rayFlags, const double origin[3]) {
     if (detail::tlsTieWatch) detail::tlsTieWatch->Describe(kind, rayFlags, origin);
 }
