@@ -89,18 +89,23 @@ bool SetRayFlagBits(Ray& ray, std::uint16_t bits)
 
 }  // namespace
 
-void TieSearchHook::Describe() const
+bool SearchTieWatch::Describe(const void *context, TiedSearch& search, std::uint32_t& unitIndex)
 {
+	const SearchTieWatch& self = *static_cast<const SearchTieWatch *>(context);
 	// Another kind of search stays undescribed: its sample is traced again.
-	const std::uint8_t kind = SearchKind(precondition_, postcondition_);
-	if(kind == kUnknownSearch)
-		return;
-	DescribeTieSearch(kind, RayFlagBits(*ray_), ray_->Origin);
+	search.kind = SearchKind(*self.precondition_, *self.postcondition_);
+	if(search.kind == kUnknownSearch)
+		return false;
+	search.rayFlags = RayFlagBits(*self.ray_);
+	for(int i = 0; i < 3; i++)
+		search.origin[i] = self.ray_->Origin[i];
 	// Which object the search found, if any: both searches start with none (TraceRay's
 	// intersection is new; the shadow loop clears it before each search), and
 	// FindIntersection sets it with the depth.
-	const pov::ObjectBase *object = best_.Object;
-	NoteTieSearchFound(object != NULL ? object->fcUnit : kUnitNothing, object != NULL ? object->fcHash : 0);
+	const pov::ObjectBase *object = self.best_->Object;
+	unitIndex = (object != NULL) ? object->fcUnit : kUnitNothing;
+	search.objectHash = (object != NULL) ? object->fcHash : 0;
+	return true;
 }
 
 bool TraceTieReplayer::Replay(const TiedSearch& search, double& depth, std::uint32_t& unitIndex,

@@ -12,14 +12,14 @@
 
 #include <cstdint>
 
+// POV-Ray's Ray and Intersection (frame.h is always the first POV-Ray header included)
+#include "backend/frame.h"
+
 #include "povrayfc/tie_replay.h"
 #include "povrayfc/tie_watch.h"
 
 namespace pov
 {
-class Ray;
-class Intersection;
-struct RayObjectCondition;
 class Trace;
 }
 
@@ -28,25 +28,32 @@ namespace povrayfc
 namespace scene
 {
 
-// Made on the stack of Trace::FindIntersection, after its TieWatch: when it goes (the
-// search done) and the search ended in a tie, describes it to the watch and tells it what
-// `best` holds. Costs a thread-local test when no sample is being recorded, and a few
-// stores and compares a search when one is.
-class TieSearchHook
+// The TieWatch of Trace::FindIntersection with conditions: if the search ends in a tie,
+// the watch asks it what the search was (TieDescriber). It keeps what it reads for that
+// only while recording; otherwise it costs what a TieWatch costs.
+class SearchTieWatch
 {
 	public:
-		TieSearchHook(const pov::Ray& ray, const pov::Intersection& best, const pov::RayObjectCondition& precondition,
-		              const pov::RayObjectCondition& postcondition) :
-			ray_(TieWatchOpen() ? &ray : NULL), best_(best), precondition_(precondition), postcondition_(postcondition) { }
-		~TieSearchHook() { if(ray_ != NULL && TieSearchTied()) Describe(); }
+		SearchTieWatch(const pov::Ray& ray, const pov::Intersection& best, const pov::RayObjectCondition& precondition,
+		               const pov::RayObjectCondition& postcondition) :
+			watch_(ray.Direction, best.Depth, &Describe, this)
+		{
+			if(watch_.Recording() == false)
+				return;
+			ray_ = &ray;
+			best_ = &best;
+			precondition_ = &precondition;
+			postcondition_ = &postcondition;
+		}
 	private:
-		void Describe() const;
-		const pov::Ray *ray_;  // null when no sample is being recorded
-		const pov::Intersection& best_;
-		const pov::RayObjectCondition& precondition_;
-		const pov::RayObjectCondition& postcondition_;
-		TieSearchHook(const TieSearchHook&);
-		TieSearchHook& operator=(const TieSearchHook&);
+		static bool Describe(const void *self, TiedSearch& search, std::uint32_t& unitIndex);
+		TieWatch watch_;  // asks Describe only while recording, when the rest is set
+		const pov::Ray *ray_;
+		const pov::Intersection *best_;
+		const pov::RayObjectCondition *precondition_;
+		const pov::RayObjectCondition *postcondition_;
+		SearchTieWatch(const SearchTieWatch&);
+		SearchTieWatch& operator=(const SearchTieWatch&);
 };
 
 // Runs a described search again through `trace` (the render thread's own tracer, in the

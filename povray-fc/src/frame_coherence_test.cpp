@@ -63,6 +63,23 @@ void NearestBox(const ToyScene &scene, const double o[3], const double d[3], dou
 
 constexpr std::uint8_t kToyCameraSearch = 1;  // the one search kind the toy can run again
 
+// What the watch of the toy's camera search asks about it when it was tied (as
+// fc-scene's SearchTieWatch answers for POV-Ray's): a box's id stands for its own hash.
+struct ToySearch {
+    const ToyScene *scene;
+    const double *origin;
+    const ToyBox *const *hit;
+};
+bool DescribeToySearch(const void *context, TiedSearch &search, std::uint32_t &unitIndex) {
+    const ToySearch &toy = *static_cast<const ToySearch *>(context);
+    search.kind = kToyCameraSearch;
+    search.rayFlags = 0;
+    for (int i = 0; i < 3; ++i) search.origin[i] = toy.origin[i];
+    unitIndex = UnitOf(*toy.scene, *toy.hit);
+    search.objectHash = *toy.hit ? (*toy.hit)->id : 0;
+    return true;
+}
+
 // One camera sample at image position (x, y): a ray along +z, the box it hits, and a
 // shadow ray from there straight up to the light (to the nearest box in its way). Records
 // the rays like POV-Ray's hooks, each with the unit it ended on.
@@ -71,14 +88,9 @@ void TraceToy(const ToyScene &scene, double x, double y, float rgbft[5]) {
     double best = 1e30;
     const ToyBox *hit = nullptr;
     {
-        TieWatch ties(d, best);
+        const ToySearch search{&scene, o, &hit};
+        TieWatch ties(d, best, &DescribeToySearch, &search);
         NearestBox(scene, o, d, best, hit);
-        // As the hook does in POV-Ray: a tied search is described. A box's id stands for
-        // its own hash.
-        if (TieSearchTied()) {
-            DescribeTieSearch(kToyCameraSearch, 0, o);
-            NoteTieSearchFound(UnitOf(scene, hit), hit ? hit->id : 0);
-        }
     }
     RecordRaySegment(o, d, hit ? best : 2e10, UnitOf(scene, hit));
     std::memset(rgbft, 0, 5 * sizeof(float));

@@ -132,23 +132,39 @@ bool PackedTies(Search search, std::vector<TiedSearch> &ties) {
     return UnpackTiedSearches(packed.data(), ties);
 }
 
-TEST(TieWatch, ATiedSearchDescribedWhenDoneIsKeptToRunAgain) {
-    const double origin[3] = {1.0, -2.0, 0.5};
+// A describer answering from a Described: what the hook would read off POV-Ray's search.
+struct Described {
+    bool describable;
+    std::uint32_t unitIndex;
+    std::uint64_t hash;
+    int asked = 0;
+};
+bool Describe(const void *context, TiedSearch &search, std::uint32_t &unitIndex) {
+    Described &d = *const_cast<Described *>(static_cast<const Described *>(context));
+    ++d.asked;
+    search.kind = 2;
+    search.rayFlags = 0x11;
+    search.origin[0] = 1.0;
+    search.origin[1] = -2.0;
+    search.origin[2] = 0.5;
+    search.objectHash = d.hash;
+    unitIndex = d.unitIndex;
+    return d.describable;
+}
+
+TEST(TieWatch, ATiedSearchIsDescribedWhenDoneAndKeptToRunAgain) {
     std::vector<TiedSearch> ties;
+    Described found{true, 1, 0xabc};
     ASSERT_TRUE(PackedTies(
         [&] {
             double best = 1e7;
-            TieWatch watch(kDirection, best);
-            // Not tied yet: nothing to describe.
+            TieWatch watch(kDirection, best, &Describe, &found);
             NoteTieCandidate(4.0);
             best = 4.0;
-            EXPECT_FALSE(TieSearchTied());
             NoteTieCandidate(4.0);
-            ASSERT_TRUE(TieSearchTied());
-            DescribeTieSearch(2, 0x11, origin);
-            NoteTieSearchFound(1, 0xabc);
         },
         ties));
+    EXPECT_EQ(found.asked, 1);
     ASSERT_EQ(ties.size(), 1u);
     EXPECT_EQ(ties[0].kind, 2);
     EXPECT_EQ(ties[0].rayFlags, 0x11);
@@ -158,39 +174,40 @@ TEST(TieWatch, ATiedSearchDescribedWhenDoneIsKeptToRunAgain) {
     EXPECT_EQ(ties[0].depth, 4.0);  // what it ended with
     EXPECT_EQ(ties[0].unit, 11u);   // the unit's id, not the parser's index
     EXPECT_EQ(ties[0].objectHash, 0xabcu);
+
+    // A search that did not end in a tie is never described.
+    Described untied{true, 1, 0xabc};
+    EXPECT_FALSE(OrderSensitive([&] {
+        double best = 1e7;
+        TieWatch watch(kDirection, best, &Describe, &untied);
+        NoteTieCandidate(4.0);
+        best = 4.0;
+        NoteTieCandidate(5.0);
+    }));
+    EXPECT_EQ(untied.asked, 0);
 }
 
 TEST(TieWatch, ATiedSearchThatCannotBeToldApartOrRunAgainMakesTheSampleUnreplayable) {
     std::vector<TiedSearch> ties;
-    const double origin[3] = {0, 0, 0};
-    auto tied = [&](auto describe) {
-        return [&, describe] {
+    auto tied = [](Described *described) {
+        return [described] {
             double best = 3.0;
-            TieWatch watch(kDirection, best);
+            TieWatch watch(kDirection, best, described ? &Describe : nullptr, described);
             NoteTieCandidate(3.0);
             NoteTieCandidate(3.0);
-            describe();
         };
     };
-    // Not described (another kind of search).
-    EXPECT_FALSE(PackedTies(tied([] {}), ties));
+    // No describer, or one that cannot describe it (another kind of search).
+    EXPECT_FALSE(PackedTies(tied(nullptr), ties));
+    Described cannot{false, 1, 5};
+    EXPECT_FALSE(PackedTies(tied(&cannot), ties));
     // Found an object without a hash of its own, or without a unit fc knows.
-    EXPECT_FALSE(PackedTies(tied([&] {
-                                DescribeTieSearch(1, 0, origin);
-                                NoteTieSearchFound(0, 0);
-                            }),
-                            ties));
-    EXPECT_FALSE(PackedTies(tied([&] {
-                                DescribeTieSearch(1, 0, origin);
-                                NoteTieSearchFound(7, 5);
-                            }),
-                            ties));
+    Described noHash{true, 0, 0}, noUnit{true, 7, 5};
+    EXPECT_FALSE(PackedTies(tied(&noHash), ties));
+    EXPECT_FALSE(PackedTies(tied(&noUnit), ties));
     // Found nothing: kept, with no unit.
-    ASSERT_TRUE(PackedTies(tied([&] {
-                               DescribeTieSearch(1, 0, origin);
-                               NoteTieSearchFound(kUnitNothing, 0);
-                           }),
-                           ties));
+    Described nothing{true, kUnitNothing, 0};
+    ASSERT_TRUE(PackedTies(tied(&nothing), ties));
     ASSERT_EQ(ties.size(), 1u);
     EXPECT_EQ(ties[0].unit, Segment::kNoUnit);
 }

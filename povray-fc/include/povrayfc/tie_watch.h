@@ -19,13 +19,11 @@
 //
 // The search hooks call this as follows (one per scene-level search, on the stack):
 //
-//   TieWatch watch(ray.Direction, bestisect.Depth);   // judges when it goes out of scope
+//   TieWatch watch(ray.Direction, bestisect.Depth, describe, context);
+//                                       // judges when it goes out of scope; describes
+//                                       // the search through `describe` if it was tied
 //   ... for every object the search intersects:  NoteTieCandidate(depth)
 //   ... when it stops at a box or cell it does not enter: NoteTieSkipped(entry, magnitude)
-//   if (TieSearchTied()) {             // the search done, before the watch goes
-//       DescribeTieSearch(kind, flags, ray.Origin);   // to run it again (tie_replay.h)
-//       NoteTieSearchFound(unit, hash);               // and what it found
-//   }
 //
 // The notes reach the innermost watch of the thread. Every call is one thread-local test
 // when the thread is not recording a sample.
@@ -42,25 +40,35 @@ namespace povrayfc {
 
 class TieWatch;
 
+// Says what a search that ended in a tie was and what it found, so that it can be run
+// again (tie_replay.h): fills `search`'s kind, ray flags, origin and object hash, and the
+// unit index the parser wrote into the object found (kUnitNothing: none). False when the
+// search cannot be described. `context` is what the hook gave the watch.
+using TieDescriber = bool (*)(const void *context, TiedSearch &search, std::uint32_t &unitIndex);
+
 namespace detail {
 extern thread_local TieWatch *tlsTieWatch;
 }  // namespace detail
 
 class TieWatch {
   public:
-    // `best`: the search's best depth, read when the watch is destroyed (the search's
-    // result by then; its starting value bounds the search, e.g. a shadow ray's light).
+    // `direction`: the ray's, which must outlive the watch. `best`: the search's best
+    // depth, read when the watch is destroyed (the search's result by then; its starting
+    // value bounds the search, e.g. a shadow ray's light).
+    // `describe` (with `context`), when given, is asked about the search only if it ends in
+    // a tie; without it a tied search cannot be run again.
     // Not recording (every ray with fc off, and most without a sample open), the watch
     // costs one thread-local load here and a test when it goes: nothing else is set.
-    TieWatch(const double direction[3], const double &best) : recorder_(detail::tlsRecorder), best_(best) {
+    TieWatch(const double direction[3], const double &best, TieDescriber describe = nullptr,
+             const void *context = nullptr)
+        : recorder_(detail::tlsRecorder), best_(best) {
         if (!recorder_) return;
         outer_ = detail::tlsTieWatch;
-        direction_[0] = direction[0];
-        direction_[1] = direction[1];
-        direction_[2] = direction[2];
+        direction_ = direction;
         nearest_ = second_ = skippedReach_ = std::numeric_limits<double>::infinity();
-        search_.start = best;
-        described_ = found_ = false;
+        start_ = best;
+        describe_ = describe;
+        context_ = context;
         // The thread's innermost watch until the destructor restores the outer one.
 #if defined(__GNUC__) && !defined(__clang__) && __GNUC__ >= 12
 #pragma GCC diagnostic push
@@ -75,9 +83,13 @@ class TieWatch {
         if (!recorder_) return;
         detail::tlsTieWatch = outer_;
         if (!Tied(best_)) return;
-        if (described_ && found_) {
-            search_.depth = best_;
-            recorder_->AddTiedSearch(search_, foundUnit_);
+        TiedSearch search;
+        std::uint32_t unitIndex;
+        if (describe_ && describe_(context_, search, unitIndex)) {
+            for (int i = 0; i < 3; ++i) search.direction[i] = direction_[i];
+            search.start = start_;
+            search.depth = best_;
+            recorder_->AddTiedSearch(search, unitIndex);
         } else {
             recorder_->MarkOrderSensitive();
         }
@@ -85,27 +97,9 @@ class TieWatch {
     TieWatch(const TieWatch &) = delete;
     TieWatch &operator=(const TieWatch &) = delete;
 
-    // What the search is, to run it again (tie_replay.h): the conditions it searches with
-    // (`kind`, numbered by the caller), the ray's flags, and its origin (the direction was
-    // given to the constructor).
-    void Describe(std::uint8_t kind, std::uint16_t rayFlags, const double origin[3]) {
-        if (!recorder_) return;
-        search_.kind = kind;
-        search_.rayFlags = rayFlags;
-        for (int i = 0; i < 3; ++i) {
-            search_.origin[i] = origin[i];
-            search_.direction[i] = direction_[i];
-        }
-        described_ = true;
-    }
-    // What the search found: the unit index the parser wrote into the object (kUnitNothing
-    // when none) and the object's own hash. Call after the search, before the watch goes.
-    void Found(std::uint32_t unitIndex, std::uint64_t objectHash) {
-        if (!recorder_) return;
-        foundUnit_ = unitIndex;
-        search_.objectHash = objectHash;
-        found_ = true;
-    }
+    // Whether the thread records a sample: otherwise the watch does nothing, and what a
+    // describer would read need not be kept.
+    bool Recording() const { return recorder_ != nullptr; }
 
     // An object's nearest intersection at `depth`, whether or not it became the best.
     void Candidate(double depth) {
@@ -127,8 +121,6 @@ class TieWatch {
     // its candidates: two candidates tied at the best depth, or something skipped close
     // enough behind it that its object may reach up to the best depth.
     bool Tied(double best) const { return (nearest_ == best && second_ == best) || skippedReach_ <= best; }
-    // The same for the search's best depth as it stands (its result, once it is done).
-    bool Tied() const { return Tied(best_); }
 
     // How far before its entry depth a skipped box's object may intersect the ray. A leaf's
     // float box is within 2^-23 of `magnitude` of the object's exact box (its corner and
@@ -140,8 +132,8 @@ class TieWatch {
     // contact between objects, which are traced again whenever anything moves.
     double SkipSlack(double magnitude) const {
         double smallest = std::numeric_limits<double>::infinity();
-        for (double d : direction_) {
-            const double a = std::fabs(d);
+        for (int i = 0; i < 3; ++i) {
+            const double a = std::fabs(direction_[i]);
             if (a > 0.0 && a < smallest) smallest = a;
         }
         if (!(smallest < std::numeric_limits<double>::infinity())) return std::numeric_limits<double>::infinity();
@@ -153,11 +145,11 @@ class TieWatch {
     const double &best_;
     // Set only while recording (see the constructor).
     TieWatch *outer_;
-    double direction_[3];
+    const double *direction_;  // the ray's, which outlives the search
     double nearest_, second_, skippedReach_;
-    TiedSearch search_;
-    std::uint32_t foundUnit_;
-    bool described_, found_;
+    double start_;  // the best depth the search started from
+    TieDescriber describe_;
+    const void *context_;
 };
 
 // From the hooks inside a search (see above): no-ops unless a watch is open on this thread.
@@ -167,17 +159,6 @@ inline void NoteTieCandidate(double depth) {
 }
 inline void NoteTieSkipped(double entry, double magnitude) {
     if (detail::tlsTieWatch) detail::tlsTieWatch->Skipped(entry, magnitude);
-}
-// From the hook that describes a search (fc-scene's tie_searches.h), once the search is
-// done: whether the innermost watch's search ended in a tie; if so, what it is and what
-// it found (TieWatch::Describe, Found). Only a tied search is described, so the hooks cost
-// next to nothing on every other.
-inline bool TieSearchTied() { return detail::tlsTieWatch != nullptr && detail::tlsTieWatch->Tied(); }
-inline void DescribeTieSearch(std::uint8_t kind, std::uint16_t rayFlags, const double origin[3]) {
-    if (detail::tlsTieWatch) detail::tlsTieWatch->Describe(kind, rayFlags, origin);
-}
-inline void NoteTieSearchFound(std::uint32_t unitIndex, std::uint64_t objectHash) {
-    if (detail::tlsTieWatch) detail::tlsTieWatch->Found(unitIndex, objectHash);
 }
 // The same for a skipped float box as POV-Ray keeps it (lower corner and lengths); it holds
 // the boxes below it, so its magnitude bounds theirs.
