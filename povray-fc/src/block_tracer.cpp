@@ -247,7 +247,7 @@ bool BlockTracer::Begin(std::uint32_t serial, int left, int top, int right, int 
         // Group by group, passing over those nothing of this frame concerns (group_index.h).
         const GroupIndex &index = old_->groupIndex;
         oldDirty_.assign(n, 0);
-        std::uint64_t tested = 0, cleared = 0, tiedReplayed = 0, tiedKept = 0, searchesReplayed = 0;
+        std::uint64_t tested = 0, cleared = 0, tiedReplayed = 0, tiedKept = 0;
         for (std::size_t g = 0; g < groupReach_.size(); ++g) {
             const std::uint8_t flags = index.flags[g];
             const bool everything = (flags & GroupIndex::kEverything) != 0;
@@ -283,8 +283,7 @@ bool BlockTracer::Begin(std::uint32_t serial, int left, int top, int right, int 
                 // find what they found (tie_replay.h).
                 if (!dirty && order && s.orderSensitive) {
                     ++tiedReplayed;
-                    dirty = !TiedSearchesHold(old_->TiedSearchesOf(s), tieReplayer_, plan.unitIds, plan.unitCount,
-                                              searchesReplayed);
+                    dirty = !TiedSearchesHold(old_->TiedSearchesOf(s), tieReplayer_, plan.unitIds, plan.unitCount);
                     if (!dirty) ++tiedKept;
                 }
                 oldDirty_[i] = dirty;
@@ -295,7 +294,6 @@ bool BlockTracer::Begin(std::uint32_t serial, int left, int top, int right, int 
         plan.counters->clearedSamples += cleared;
         plan.counters->tiedSamplesReplayed += tiedReplayed;
         plan.counters->tiedSamplesKept += tiedKept;
-        plan.counters->tiedSearchesReplayed += searchesReplayed;
     }
     if (!anyDirty) {
         plan.counters->reusedPixels += area;

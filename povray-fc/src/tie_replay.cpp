@@ -80,7 +80,7 @@ bool UnpackTiedSearches(const std::uint8_t *bytes, std::vector<TiedSearch> &sear
 }
 
 bool TiedSearchesHold(const std::uint8_t *bytes, TieReplayer *replayer, const std::uint32_t *unitIds,
-                      std::size_t unitCount, std::uint64_t &replayed) {
+                      std::size_t unitCount) {
     if (!replayer) return false;
     // Scratch per thread: a block tests its samples one after another.
     thread_local std::vector<TiedSearch> searches;
@@ -89,7 +89,6 @@ bool TiedSearchesHold(const std::uint8_t *bytes, TieReplayer *replayer, const st
         double depth;
         std::uint32_t unitIndex, id;
         std::uint64_t hash;
-        ++replayed;
         if (!replayer->Replay(s, depth, unitIndex, hash)) return false;
         if (!UnitIdOf(unitIndex, unitIds, unitCount, id)) return false;
         // Exactly the same depth (bit for bit), object and part.

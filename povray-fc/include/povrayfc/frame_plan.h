@@ -27,13 +27,13 @@ struct FrameCounters {
     // and the samples traced in blocks it had left out.
     std::atomic<std::uint64_t> overBudgetBlocks{0}, unrecordedSamples{0};
     // Order-sensitive samples clean but for the order of the objects, whose tied searches
-    // were run again (tie_replay.h); those kept; and the searches run.
-    std::atomic<std::uint64_t> tiedSamplesReplayed{0}, tiedSamplesKept{0}, tiedSearchesReplayed{0};
+    // were run again (tie_replay.h), and those kept.
+    std::atomic<std::uint64_t> tiedSamplesReplayed{0}, tiedSamplesKept{0};
 
     void Reset() {
         tracedPixels = reusedPixels = tracedSamples = reusedSamples = reusedBlocks = replayedBlocks = 0;
         testedSamples = clearedSamples = overBudgetBlocks = unrecordedSamples = 0;
-        tiedSamplesReplayed = tiedSamplesKept = tiedSearchesReplayed = 0;
+        tiedSamplesReplayed = tiedSamplesKept = 0;
     }
 };
 

@@ -28,7 +28,7 @@
 namespace povrayfc {
 
 // One search for a ray's nearest intersection, and what it found. Plain data (no
-// initialisers): a TieWatch holds one on every search's stack, filled only when recording.
+// initialisers): filled by a TieWatch and its describer when the search ended in a tie.
 struct TiedSearch {
     std::uint8_t kind;          // the conditions it searched with; the patch layer numbers them
     std::uint16_t rayFlags;     // POV-Ray's flags of the ray (image, reflection, shadow test, ...)
@@ -66,10 +66,10 @@ std::size_t TiedSearchesBytes(const std::uint8_t *bytes);
 bool UnpackTiedSearches(const std::uint8_t *bytes, std::vector<TiedSearch> &searches);
 
 // Runs the packed searches at `bytes` again through `replayer`, in order, and says whether
-// each found what it found before. `unitIds` maps this frame's unit indexes to ids
-// (FramePlan::unitIds). `replayed` counts the searches run.
+// each found what it found before; it stops at the first that did not. `unitIds` maps this
+// frame's unit indexes to ids (FramePlan::unitIds).
 bool TiedSearchesHold(const std::uint8_t *bytes, TieReplayer *replayer, const std::uint32_t *unitIds,
-                      std::size_t unitCount, std::uint64_t &replayed);
+                      std::size_t unitCount);
 
 }  // namespace povrayfc
 
