@@ -3,7 +3,7 @@
 
 #include <cstring>
 
-#include "povrayfc/scene_signature.h"
+#include "povrayfc/ray_recording.h"
 #include "povrayfc/segment.h"
 
 namespace povrayfc {
@@ -20,18 +20,6 @@ template <class T>
 void Get(const std::uint8_t *&in, T &value) {
     std::memcpy(&value, in, sizeof value);
     in += sizeof value;
-}
-
-// The id a found object's unit index has this frame; kNoUnit when it found nothing, and
-// false when the object has no unit fc knows (it cannot be the one found before).
-bool UnitIdOf(std::uint32_t unitIndex, const std::uint32_t *unitIds, std::size_t unitCount, std::uint32_t &id) {
-    if (unitIndex == kUnitNothing) {
-        id = Segment::kNoUnit;
-        return true;
-    }
-    if (unitIndex >= unitCount || unitIds[unitIndex] >= Segment::kOpaqueBlocker) return false;
-    id = unitIds[unitIndex];
-    return true;
 }
 
 }  // namespace
@@ -90,7 +78,8 @@ bool TiedSearchesHold(const std::uint8_t *bytes, TieReplayer *replayer, const st
         std::uint32_t unitIndex, id;
         std::uint64_t hash;
         if (!replayer->Replay(s, depth, unitIndex, hash)) return false;
-        if (!UnitIdOf(unitIndex, unitIds, unitCount, id)) return false;
+        // An object without a unit fc knows cannot be the one found before.
+        if (!SegmentUnitOf(unitIndex, unitIds, unitCount, id)) return false;
         // Exactly the same depth (bit for bit), object and part.
         if (std::memcmp(&depth, &s.depth, sizeof depth) != 0 || id != s.unit || hash != s.objectHash) return false;
     }

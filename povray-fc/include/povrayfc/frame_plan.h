@@ -26,8 +26,8 @@ struct FrameCounters {
     // Blocks whose record the memory budget left out: traced in full when next rendered;
     // and the samples traced in blocks it had left out.
     std::atomic<std::uint64_t> overBudgetBlocks{0}, unrecordedSamples{0};
-    // Order-sensitive samples clean but for the order of the objects, whose tied searches
-    // were run again (tie_replay.h), and those kept.
+    // Order-sensitive samples clean but for the order of the objects (their tied searches
+    // are run again where they could be kept: tie_replay.h), and those kept.
     std::atomic<std::uint64_t> tiedSamplesReplayed{0}, tiedSamplesKept{0};
 
     void Reset() {

@@ -22,8 +22,8 @@ struct FrameStats {
     // Stored samples a change's cones reached: tested segment by segment, or found clean by
     // the clearance kept from an earlier frame (change_drift.h).
     std::uint64_t samplesTested = 0, samplesCleared = 0;
-    // Samples clean but for the order of the objects whose tied searches were run again
-    // (tie_replay.h), and those of them kept.
+    // Order-sensitive samples clean but for the order of the objects (their tied searches
+    // are run again where they could be kept: tie_replay.h), and those of them kept.
     std::uint64_t tiedSamplesReplayed = 0, tiedSamplesKept = 0;
     std::uint64_t rays = 0;       // rays traced (POV-Ray's "Rays:" count)
     double bookkeepingSeconds = 0.0;  // change detection and statistics, outside the render threads

@@ -24,6 +24,20 @@
 
 namespace povrayfc {
 
+// The Segment::unit a ray that ended on the parser's unit index `unitIndex` records
+// (kUnitNothing: it ended on nothing, Segment::kNoUnit), by this frame's ids `unitIds` of
+// `unitCount` units; false when the object has no unit fc knows an id for.
+inline bool SegmentUnitOf(std::uint32_t unitIndex, const std::uint32_t *unitIds, std::size_t unitCount,
+                          std::uint32_t &unit) {
+    if (unitIndex == kUnitNothing) {
+        unit = Segment::kNoUnit;
+        return true;
+    }
+    if (unitIndex >= unitCount || unitIds[unitIndex] >= Segment::kOpaqueBlocker) return false;
+    unit = unitIds[unitIndex];
+    return true;
+}
+
 // Collects the segments of one camera sample, appending to a render block's lists (so a
 // finished sample needs no copy): each segment and its fan number.
 class SampleRecorder {
@@ -102,15 +116,9 @@ class SampleRecorder {
     void AddTiedSearch(TiedSearch search, std::uint32_t unitIndex) {
         orderSensitive_ = true;
         if (!tiesComplete_) return;
-        if (unitIndex == kUnitNothing) {
-            search.unit = Segment::kNoUnit;
-        } else if (unitIndex < unitCount_ && unitIds_[unitIndex] < Segment::kOpaqueBlocker && search.objectHash != 0) {
-            search.unit = unitIds_[unitIndex];
-        } else {
-            tiesComplete_ = false;
-            return;
-        }
-        if (ties_.size() >= kMaxTiedSearches) {
+        const bool known = SegmentUnitOf(unitIndex, unitIds_, unitCount_, search.unit) &&
+                           (search.unit == Segment::kNoUnit || search.objectHash != 0);
+        if (!known || ties_.size() >= kMaxTiedSearches) {
             tiesComplete_ = false;
             return;
         }
@@ -154,8 +162,8 @@ class SampleRecorder {
     // The id a segment that ended on the frame's unit `unit` records. An object the parser
     // gave no unit makes the sample depend on everything.
     std::uint32_t UnitId(std::uint32_t unit) {
-        if (unit == kUnitNothing) return Segment::kNoUnit;
-        if (unit < unitCount_ && unitIds_[unit] < Segment::kOpaqueBlocker) return unitIds_[unit];
+        std::uint32_t id;
+        if (SegmentUnitOf(unit, unitIds_, unitCount_, id)) return id;
         everything_ = true;
         return Segment::kNoUnit;
     }
