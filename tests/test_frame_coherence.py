@@ -164,6 +164,19 @@ def test_moved_cutter_dirties_only_where_its_cut_was_or_is(tmp_path):
         assert int(row["traced"]) <= 2 * changed_pixels(tmp_path / "off", n), row
 
 
+def test_shadow_tests_a_grown_box_still_crosses_stay_dark(tmp_path):
+    # A box out of view grows and slides, casting a large shadow: a shadow test it darkened
+    # holds while the new box still crosses it, so only the shadow's rim is traced again.
+    # Taking only balls as blockers re-traced the whole shadow, about 30 times as much.
+    render_animation(FC_SCENES / "growing_box_shadow.pov", tmp_path / "off", False, 1, [])
+    rows = render_animation(FC_SCENES / "growing_box_shadow.pov", tmp_path / "on", True, 1, [])
+    for n in range(2, FRAMES + 1):
+        row = rows[n - 1]
+        assert row["full_reason"] == "", row
+        assert int(row["traced"]) <= 2 * changed_pixels(tmp_path / "off", n), row
+        assert_same_pixels(tmp_path / "off" / f"f{n}.tga", tmp_path / "on" / f"f{n}.tga")
+
+
 @pytest.mark.parametrize("scene", ["tie_far_change", "tie_csg"])
 def test_tied_samples_whose_searches_find_the_same_are_kept(scene, tmp_path):
     # A small sphere moving far from coincident objects reshapes POV-Ray's bounding tree

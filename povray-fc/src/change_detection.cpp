@@ -207,7 +207,9 @@ FrameChange CompareFrames(const FrameSetup &lastSetup, const SceneSignature &las
         if (now.units[i].cutPart) reshapedNow.insert(now.units[i].cutGroup);
         if (!AddHull(now.units[i], change)) return change;
         if (now.units[i].hasBall && change.blockers.size() < FrameChange::kMaxBlockers)
-            change.blockers.push_back(Blocker{now.units[i].ball, i});
+            change.blockers.push_back(Blocker::OfBall(now.units[i].ball, i));
+        if (now.units[i].hasBlockingBox && change.blockers.size() < FrameChange::kMaxBlockers)
+            change.blockers.push_back(Blocker::OfBox(now.units[i].blockingBox, i));
     }
     // The parts that changed shape: where they were.
     bool bounded = true;

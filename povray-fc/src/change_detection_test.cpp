@@ -341,5 +341,17 @@ TEST(ChangeDetection, TheBallsAmongTheNewShapesAreTheFramesBlockers) {
     EXPECT_TRUE(CompareFrames(Frame(), Scene({ball}), Frame(), Scene({ball}), false).blockers.empty());
 }
 
+TEST(ChangeDetection, TheBoxesAmongTheNewShapesAreBlockersToo) {
+    UnitSignature box = Unit(10, 100, 0), grown = Unit(11, 110, 4);
+    box.hasBlockingBox = grown.hasBlockingBox = true;
+    grown.blockingBox = Box{{0, 0, 0}, {2, 5, 1}};
+    const FrameChange change = CompareFrames(Frame(), Scene({box}), Frame(), Scene({Unit(12, 120, 8), grown}), false);
+    ASSERT_EQ(change.blockers.size(), 1u);
+    EXPECT_TRUE(change.blockers[0].isBox);
+    EXPECT_EQ(change.blockers[0].box.hi.y, 5.0);
+    EXPECT_EQ(change.blockers[0].unit, 1u);
+    EXPECT_TRUE(CompareFrames(Frame(), Scene({box}), Frame(), Scene({box}), false).blockers.empty());
+}
+
 }  // namespace
 }  // namespace povrayfc

@@ -1,4 +1,4 @@
-// Shadow blockers: whether an opaque ball provably crosses a stored shadow test's way.
+// Shadow blockers: whether an opaque ball or box provably crosses a stored shadow test's way.
 #include "povrayfc/shadow_blockers.h"
 
 #include <algorithm>
@@ -54,9 +54,59 @@ bool BallDarkens(const Segment &s, const Ball &ball) {
     return along - outer > tolerance && along + outer < reach - tolerance;
 }
 
+bool BoxDarkens(const Segment &s, const Box &box) {
+    const Vec3 o{s.origin[0], s.origin[1], s.origin[2]};
+    const Vec3 d{s.direction[0], s.direction[1], s.direction[2]};
+    const double dd = Dot(d, d);
+    if (!(dd > 0.0) || box.Empty() || !box.IsFinite() || !std::isfinite(s.length)) return false;
+    const Vec3 centre = 0.5 * (box.lo + box.hi);
+    const Vec3 half = 0.5 * (box.hi - box.lo);
+    const double radius = std::max(half.x, std::max(half.y, half.z));
+    // m and g as for a ball (BallDarkens): the traced ray's point at each depth lies within
+    // m of the stored one's, so where the stored ray is inside the box shrunk by m + g the
+    // traced one is inside the box, and where it is outside the box grown by m + g, so is
+    // the traced one; the box being convex, the traced ray's chord lies between the two.
+    const double m = 2.0 * SegmentMargin(s, centre, radius);
+    const double scale = std::fabs(o.x) + std::fabs(o.y) + std::fabs(o.z) + std::fabs(centre.x) +
+                         std::fabs(centre.y) + std::fabs(centre.z) + radius + double(s.length);
+    const double e = m + 1e-9 * scale;
+    const double reach = double(s.length) * (1.0 - 0x1p-20);
+    // POV-Ray's box takes a ray as parallel to a slab when that component of its unit
+    // direction is within 1e-10 of 0, and then bounds it there only by where it starts. That
+    // moves no entry this test accepts: from inside the slab the ray's way out only moves
+    // farther, and from outside it would reach the slab shrunk by e only beyond 1e10 e,
+    // farther than any point of the box from the origin (e is at least 2^-18 of that
+    // distance), so the chord below is empty.
+    double innerNear = 0.0, innerFar = reach, outerNear = -HUGE_VAL, outerFar = HUGE_VAL;
+    for (int axis = 0; axis < 3; ++axis) {
+        const double lo = box.lo[axis], hi = box.hi[axis], oi = o[axis], di = d[axis];
+        if (!(hi - e > lo + e)) return false;  // no inside left once shrunk
+        if (di == 0.0) {
+            if (!(oi > lo + e && oi < hi - e)) return false;
+            continue;
+        }
+        double a = (lo + e - oi) / di, b = (hi - e - oi) / di;
+        if (a > b) std::swap(a, b);
+        innerNear = std::max(innerNear, a);
+        innerFar = std::min(innerFar, b);
+        a = (lo - e - oi) / di;
+        b = (hi + e - oi) / di;
+        if (a > b) std::swap(a, b);
+        outerNear = std::max(outerNear, a);
+        outerFar = std::min(outerFar, b);
+    }
+    // Through the box at depth, with a chord the loop cannot step over from a surface just
+    // in front (twice its tolerance); the whole box, grown, between the tolerances. As for a
+    // ball, the tolerances are depths along a unit direction.
+    const double unit = std::sqrt(dd);
+    const double tolerance = (kShadowTolerance + 1e-9 * scale) / unit;
+    return innerFar - innerNear >= 2.0 * kShadowTolerance / unit && outerNear > tolerance &&
+           outerFar < reach - tolerance;
+}
+
 const Blocker *DarkeningBlocker(const Segment &s, const std::vector<Blocker> &blockers) {
     for (const Blocker &b : blockers)
-        if (BallDarkens(s, b.ball)) return &b;
+        if (b.isBox ? BoxDarkens(s, b.box) : BallDarkens(s, b.ball)) return &b;
     return nullptr;
 }
 

@@ -26,7 +26,7 @@ const Vec3 kUp{0, 1, 0};
 
 TEST(ShadowBlockers, ABallSquarelyOnTheWayDarkensIt) {
     EXPECT_TRUE(BallDarkens(ShadowTest({0, 0, 0}, kUp, 50), Ball{{0.5, 20, 0}, 5}));
-    const std::vector<Blocker> two = {Blocker{Ball{{30, 20, 0}, 1}, 4}, Blocker{Ball{{0, 10, 0}, 2}, 9}};
+    const std::vector<Blocker> two = {Blocker::OfBall(Ball{{30, 20, 0}, 1}, 4), Blocker::OfBall(Ball{{0, 10, 0}, 2}, 9)};
     const Blocker *found = DarkeningBlocker(ShadowTest({0, 0, 0}, kUp, 50), two);
     ASSERT_NE(found, nullptr);
     EXPECT_EQ(found->unit, 9u);
@@ -137,6 +137,119 @@ TEST(ShadowBlockers, EveryRayTheSegmentStandsForCrossesTheBallWithinTheTolerance
         }
     }
     EXPECT_GT(darkened, 50000);  // the invariant was put to the test
+}
+
+TEST(ShadowBlockers, ABoxSquarelyOnTheWayDarkensIt) {
+    const Segment s = ShadowTest({0, 0, 0}, Unit(Vec3{0.2, 1, 0.1}), 50);
+    EXPECT_TRUE(BoxDarkens(s, Box{{-2, 18, -2}, {8, 22, 8}}));
+    const std::vector<Blocker> two = {Blocker::OfBall(Ball{{30, 20, 0}, 1}, 4),
+                                      Blocker::OfBox(Box{{-2, 18, -2}, {8, 22, 8}}, 9)};
+    const Blocker *found = DarkeningBlocker(s, two);
+    ASSERT_NE(found, nullptr);
+    EXPECT_EQ(found->unit, 9u);
+    // Beside the way, behind the origin, past the light, flat: nothing.
+    EXPECT_FALSE(BoxDarkens(s, Box{{20, 18, -2}, {28, 22, 8}}));
+    EXPECT_FALSE(BoxDarkens(s, Box{{-8, -22, -8}, {8, -18, 8}}));
+    EXPECT_FALSE(BoxDarkens(s, Box{{-20, 60, -20}, {20, 70, 20}}));
+    EXPECT_FALSE(BoxDarkens(s, Box{{-20, 20, -20}, {20, 20, 20}}));
+    EXPECT_FALSE(BoxDarkens(s, Box{}));
+}
+
+TEST(ShadowBlockers, TheWholeBoxMustLieBetweenTheTolerancesWithAChordAtDepth) {
+    const Segment s = ShadowTest({0, 0, 0}, kUp, 50);
+    // The origin inside it, or its near side within the tolerance of the origin.
+    EXPECT_FALSE(BoxDarkens(s, Box{{-1, -1, -1}, {1, 1, 1}}));
+    EXPECT_FALSE(BoxDarkens(s, Box{{-1, 0.0005, -1}, {1, 2, 1}}));
+    EXPECT_TRUE(BoxDarkens(s, Box{{-1, 0.01, -1}, {1, 2, 1}}));
+    // Its far side past the light or within the tolerance of it.
+    EXPECT_FALSE(BoxDarkens(s, Box{{-1, 48, -1}, {1, 51, 1}}));
+    EXPECT_FALSE(BoxDarkens(s, Box{{-1, 48, -1}, {1, 49.9995, 1}}));
+    EXPECT_TRUE(BoxDarkens(s, Box{{-1, 48, -1}, {1, 49.99, 1}}));
+    // A chord the loop could step over.
+    EXPECT_FALSE(BoxDarkens(s, Box{{-1, 10, -1}, {1, 10.0015, 1}}));
+    EXPECT_TRUE(BoxDarkens(s, Box{{-1, 10, -1}, {1, 10.01, 1}}));
+    // Grazed: the ray runs along a face, within the rounding of it.
+    const double m = 2.0 * SegmentMargin(s, Vec3{0, 20, 0}, 5);
+    EXPECT_FALSE(BoxDarkens(s, Box{{-0.5 * m, 15, -5}, {5, 25, 5}}));
+    EXPECT_TRUE(BoxDarkens(s, Box{{-0.1, 15, -5}, {5, 25, 5}}));
+}
+
+// POV-Ray's own box test (box.cpp, Box::Intersect) of a ray against a box without a
+// transformation: the depths it enters and leaves at, or false.
+bool PovRayBox(const Vec3 &p, const Vec3 &d, const Box &box, double &tmin, double &tmax) {
+    const double kEpsilon = 1.0e-10;
+    tmin = 0.0;
+    tmax = 1.0e10;
+    for (int axis = 0; axis < 3; ++axis) {
+        const double lo = box.lo[axis], hi = box.hi[axis];
+        if (d[axis] < -kEpsilon || d[axis] > kEpsilon) {
+            double t1 = (lo - p[axis]) / d[axis], t2 = (hi - p[axis]) / d[axis];
+            if (t1 > t2) std::swap(t1, t2);
+            if (t2 < tmin || t1 > tmax) return false;
+            tmin = std::max(tmin, t1);
+            tmax = std::min(tmax, t2);
+        } else if (p[axis] < lo || p[axis] > hi) {
+            return false;
+        }
+    }
+    return tmax >= 1.0e-6;
+}
+
+// Invariant: whenever a box darkens a stored test, every ray the stored segment may stand
+// for meets it, by POV-Ray's own test, entering and leaving within the depths the shadow
+// loop accepts, with a chord it cannot step over. The boxes graze the ray, lie near a
+// tolerance, or have a face nearly parallel to it, each by 10^-1 to 10^-13 of the scene.
+TEST(ShadowBlockers, EveryRayTheSegmentStandsForCrossesTheBoxWithinTheTolerances) {
+    std::mt19937_64 rng(20261207);
+    std::uniform_real_distribution<double> u(-1.0, 1.0), exponent(1.0, 13.0);
+    int darkened = 0;
+    for (int trial = 0; trial < 300000; ++trial) {
+        const double scale = std::pow(10.0, 2.0 * u(rng));
+        const double near = std::pow(10.0, -exponent(rng));
+        const Vec3 o{scale * 40 * u(rng), scale * 40 * u(rng), scale * 40 * u(rng)};
+        Vec3 d = Unit(Vec3{u(rng), u(rng), u(rng)} + Vec3{0, 0, 1e-3});
+        if (trial % 4 == 3) d[trial % 3] = near * u(rng);  // nearly parallel to a slab
+        d = Unit(d);
+        const double reach = scale * (1 + 30 * (u(rng) + 1));
+        const double at = reach * (u(rng) + 1) / 2;
+        const Vec3 half{scale * 2 * (u(rng) + 1.001), scale * 2 * (u(rng) + 1.001), scale * 2 * (u(rng) + 1.001)};
+        Vec3 centre = o + at * d + Vec3{half.x * u(rng), half.y * u(rng), half.z * u(rng)};
+        Box box{centre - half, centre + half};
+        switch (trial % 4) {
+            case 0: {  // grazing: a face through a point of the ray
+                const int axis = trial % 3;
+                box.lo[axis] = (o + at * d)[axis] - near * scale;
+                break;
+            }
+            case 1:  // the near side at the tolerance from the origin
+                box.lo = o + (kShadowTolerance + near * scale) * d - Vec3{0, 0, 0} - 0.5 * half;
+                box.hi = box.lo + half;
+                break;
+            case 2:  // the far side at the tolerance before the light
+                box.hi = o + (reach - kShadowTolerance - near * scale) * d + 0.5 * half;
+                box.lo = box.hi - half;
+                break;
+            default: break;
+        }
+        const double origin[3] = {o.x, o.y, o.z}, direction[3] = {d.x, d.y, d.z};
+        Segment s;
+        if (!MakeSegment(origin, direction, reach, s)) continue;
+        s.unit = Segment::kOpaqueBlocker;
+        if (!BoxDarkens(s, box)) continue;
+        ++darkened;
+        const Vec3 c = 0.5 * (box.lo + box.hi);
+        const double radius = std::max(half.x, std::max(half.y, half.z));
+        for (int k = 0; k < 4; ++k) {
+            const double wiggle = k == 0 ? 0.0 : 0.5 * SegmentMargin(s, c, radius);
+            const Vec3 to = o + Vec3{wiggle * u(rng), wiggle * u(rng), wiggle * u(rng)};
+            double t1, t2;
+            ASSERT_TRUE(PovRayBox(to, d, box, t1, t2)) << trial;
+            ASSERT_GT(t1, kShadowTolerance) << trial;
+            ASSERT_LT(t2, reach - kShadowTolerance) << trial;
+            ASSERT_GT(t2 - t1, 2 * kShadowTolerance) << trial;
+        }
+    }
+    EXPECT_GT(darkened, 30000);  // the invariant was put to the test
 }
 
 // A shadow test an opaque blocker answered is one segment, whatever transparent objects it

@@ -109,6 +109,14 @@ void SignatureBuilder::SetUnitBall(std::uint32_t unit, const Vec3 &centre, doubl
     u.ball = Ball{centre, radius};
 }
 
+void SignatureBuilder::SetUnitBlockingBox(std::uint32_t unit, const Box &box) {
+    if (unit >= signature_.units.size() || box.Empty() || !box.IsFinite()) return;
+    UnitSignature &u = signature_.units[unit];
+    if (u.infinite) return;
+    u.hasBlockingBox = true;
+    u.blockingBox = box;
+}
+
 void SignatureBuilder::EndItem(ParseItemClass itemClass, std::uint64_t hash, bool addedLights,
                                unsigned effects) {
     if (itemClass != ParseItemClass::kDiscard) NoteEffects(effects);

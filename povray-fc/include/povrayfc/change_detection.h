@@ -43,8 +43,8 @@ struct FrameChange {
     // has its shape and is opaque (its texture alone changed).
     std::vector<std::uint32_t> vanished;
     std::vector<std::uint8_t> shadowsKept;
-    // The hulls of this frame's units whose geometry is new, and the balls among them
-    // (UnitSignature::ball; at most kMaxBlockers).
+    // The hulls of this frame's units whose geometry is new, and the balls and boxes among
+    // them that darken shadow tests (UnitSignature::ball, blockingBox; at most kMaxBlockers).
     std::vector<Hull> hulls;
     static constexpr std::size_t kMaxBlockers = 256;
     std::vector<Blocker> blockers;

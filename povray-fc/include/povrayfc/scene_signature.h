@@ -62,9 +62,12 @@ struct UnitSignature {
     // light through, and POV-Ray's shadow loop goes on past such a surface from a new origin
     // (README.md, "Opaque blockers").
     bool translucent = false;
-    // A ball inside it that darkens every shadow test crossing it (shadow_blockers.h).
+    // A ball, or an axis-aligned box, inside it that darkens every shadow test crossing it
+    // (shadow_blockers.h).
     bool hasBall = false;
     Ball ball;
+    bool hasBlockingBox = false;
+    Box blockingBox;
     // A part of a merge, intersection or difference, a unit of its own: where its solid
     // is decides which surfaces of the other parts count (POV-Ray's inside tests), so when
     // it changes in any way every ray through its old or its new box is tested, and its

@@ -5,8 +5,9 @@
 // (trace.cpp, TracePointLightShadowRay): the light's share is then exactly nothing,
 // whichever object it was and wherever it lay. So a stored sample whose shadow test an
 // opaque unit answered stays exact when that unit moves, as long as some opaque solid of
-// the new frame provably crosses the test's way: a moving ball's shadow is traced again
-// only where it was or is now half, not where it covers the floor in both frames.
+// the new frame provably crosses the test's way: a moving ball's or a growing box's shadow
+// is traced again only where it was or is now half, not where it covers the floor in both
+// frames.
 //
 // The proof must hold for the ray POV-Ray traced, which the stored single-precision
 // segment only approximates (SegmentMargin), and for the loop's own tolerances: it
@@ -37,10 +38,17 @@ struct Ball {
     double radius = 0.0;
 };
 
-// A ball of the frame's unit `unit` (its index in SceneSignature::units).
+// A solid of the frame's unit `unit` (its index in SceneSignature::units): a ball, or an
+// axis-aligned box (a POV-Ray box without a transformation of its own: POV-Ray intersects
+// it in world space, between its two corners, like `box`).
 struct Blocker {
     Ball ball;
     std::uint32_t unit = 0;
+    bool isBox = false;
+    Box box;
+
+    static Blocker OfBall(const Ball &ball, std::uint32_t unit) { return Blocker{ball, unit, false, Box{}}; }
+    static Blocker OfBox(const Box &box, std::uint32_t unit) { return Blocker{Ball{}, unit, true, box}; }
 };
 
 // Whether the shadow test `s` stands for (a kOpaqueBlocker segment: its origin and
@@ -48,7 +56,11 @@ struct Blocker {
 // within the depths the test accepts.
 bool BallDarkens(const Segment &s, const Ball &ball);
 
-// The first of `blockers` whose ball darkens it, or nullptr.
+// The same for an axis-aligned box: the traced ray enters and leaves it within the depths
+// the test accepts, through it at depth.
+bool BoxDarkens(const Segment &s, const Box &box);
+
+// The first of `blockers` whose solid darkens it, or nullptr.
 const Blocker *DarkeningBlocker(const Segment &s, const std::vector<Blocker> &blockers);
 
 }  // namespace povrayfc
