@@ -73,10 +73,12 @@ bool BoxDarkens(const Segment &s, const Box &box) {
     const double reach = double(s.length) * (1.0 - 0x1p-20);
     // POV-Ray's box takes a ray as parallel to a slab when that component of its unit
     // direction is within 1e-10 of 0, and then bounds it there only by where it starts. That
-    // moves no entry this test accepts: from inside the slab the ray's way out only moves
-    // farther, and from outside it would reach the slab shrunk by e only beyond 1e10 e,
-    // farther than any point of the box from the origin (e is at least 2^-18 of that
-    // distance), so the chord below is empty.
+    // moves no entry this test accepts. From inside the slab only the ray's way out moves
+    // (farther), and its entry is the other slabs' as before. From outside, POV-Ray finds
+    // nothing, and the stored ray (whose component is within 2^-21 of the largest of the
+    // traced one's) reaches the slab shrunk by e only beyond 2e6 e from its origin, while e
+    // is at least 2^-18 of the farthest a point of the box lies from there: the chord below
+    // is empty.
     double innerNear = 0.0, innerFar = reach, outerNear = -HUGE_VAL, outerFar = HUGE_VAL;
     for (int axis = 0; axis < 3; ++axis) {
         const double lo = box.lo[axis], hi = box.hi[axis], oi = o[axis], di = d[axis];
