@@ -2,7 +2,8 @@
 // A bar chart whose bars grow, each a box moved and scaled into place (no rotation: POV-Ray
 // keeps such a box between its corners), casting long shadows on the floor. A shadow test
 // a bar darkened stays dark while the grown bar still crosses it, so only the shadows'
-// new ends are traced again. Around that rule's edges: a bar in an opaque union (still a
+// new ends are traced again (the bars' own faces still are wherever a ray ended on them).
+// Around that rule's edges: a bar in an opaque union (still a
 // blocker), a turned bar (a box with a transformation: not one), a no_shadow bar, and a
 // bar that lets light through.
 #version 3.7;

@@ -62,6 +62,7 @@ public:
     void SetUnitTranslucent(std::uint32_t unit);
     // The unit is an opaque, shadow-casting ball (UnitSignature::ball).
     void SetUnitBall(std::uint32_t unit, const Vec3 &centre, double radius);
+    // The unit is an opaque, shadow-casting box never turned (UnitSignature::blockingBox).
     void SetUnitBlockingBox(std::uint32_t unit, const Box &box);
     // A new merge, intersection or difference whose parts are units (its number), and the
     // unit that is one of its parts (UnitSignature::cutPart, cutGroup).
