@@ -27,6 +27,7 @@
 #include "povrayfc/parse_hasher.h"
 #include "povrayfc/shape_hulls.h"
 
+#include "corner_boxes.h"
 #include "scene_units.h"
 
 // this must be the last file included
@@ -317,6 +318,10 @@ void AddUnits(Object object, std::uint64_t path, std::uint64_t pathGeometry, boo
     Box box;
     if (darkening && BlockingBox(object, box))
         signature.SetUnitBlockingBox(unit, box);
+    Box corners;
+    if (IsCornerBox(object, corners))
+        signature.SetUnitCornerBox(unit, CombineHashes(path, object->fcHash == 0 ? UniqueHashValue() : object->fcCornerless),
+                                   corners);
     SetUnit(object, unit);
     if (unit != kUnitUnknown)
         unitObjects.push_back(object);

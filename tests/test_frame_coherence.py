@@ -177,6 +177,23 @@ def test_shadow_tests_a_grown_box_still_crosses_stay_dark(tmp_path):
         assert_same_pixels(tmp_path / "off" / f"f{n}.tga", tmp_path / "on" / f"f{n}.tga")
 
 
+def test_rays_that_ended_on_a_grown_boxs_kept_faces_are_kept(tmp_path):
+    # A bar chart whose bars grow: a ray that ended on a face that stays in its plane meets
+    # the grown bar there again, so only the bars' new tops (and a turned bar, which is not
+    # kept between its corners) are traced again. Tracing every ray that ended on a bar was
+    # about 4 times what truly changes.
+    render_animation(FC_SCENES / "growing_bars.pov", tmp_path / "off", False, 1, [])
+    rows = render_animation(FC_SCENES / "growing_bars.pov", tmp_path / "on", True, 1, [])
+    traced = changed = 0
+    for n in range(2, FRAMES + 1):
+        row = rows[n - 1]
+        assert row["full_reason"] == "", row
+        traced += int(row["traced"])
+        changed += changed_pixels(tmp_path / "off", n)
+        assert_same_pixels(tmp_path / "off" / f"f{n}.tga", tmp_path / "on" / f"f{n}.tga")
+    assert traced <= 2.5 * changed, (traced, changed)
+
+
 @pytest.mark.parametrize("scene", ["tie_far_change", "tie_csg"])
 def test_tied_samples_whose_searches_find_the_same_are_kept(scene, tmp_path):
     # A small sphere moving far from coincident objects reshapes POV-Ray's bounding tree

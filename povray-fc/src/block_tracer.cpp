@@ -108,7 +108,11 @@ bool EndsOnChangedUnit(const StoredSample &s, BlockRecord &record, const FramePl
                 return true;
             continue;
         }
-        if (!(segment.unit & Segment::kOpaqueBlocker)) return true;
+        if (!(segment.unit & Segment::kOpaqueBlocker)) {
+            // A box that only grew or moved: the hulls, where the two boxes differ, decide.
+            if (changed[unit] == FramePlan::kUnitFacesKept) continue;
+            return true;
+        }
         if (changed[unit] == FramePlan::kUnitRecoloured) continue;
         const Blocker *blocker = plan.blockers ? DarkeningBlocker(segment, *plan.blockers) : nullptr;
         if (blocker == nullptr || blocker->unit >= plan.unitCount) return true;

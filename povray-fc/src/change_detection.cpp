@@ -2,6 +2,7 @@
 // hash (see change_detection.h).
 #include "povrayfc/change_detection.h"
 
+#include <algorithm>
 #include <unordered_map>
 #include <unordered_set>
 
@@ -73,6 +74,46 @@ bool AddHull(const UnitSignature &unit, FrameChange &change) {
         if (unit.translucent) change.translucentHulls.push_back(hulls[i]);
     }
     return true;
+}
+
+// Closed boxes that together hold every point of `a` outside `b`: at most two slabs per
+// axis, each cut to what is left of `a` on the axes before it. Returns how many.
+int BoxMinus(const Box &a, const Box &b, Box out[6]) {
+    if (!a.Overlaps(b)) {
+        out[0] = a;
+        return 1;
+    }
+    int count = 0;
+    Box rest = a;
+    for (int axis = 0; axis < 3; ++axis) {
+        if (rest.lo[axis] < b.lo[axis]) {
+            Box below = rest;
+            below.hi[axis] = b.lo[axis];
+            out[count++] = below;
+            rest.lo[axis] = b.lo[axis];
+        }
+        if (rest.hi[axis] > b.hi[axis]) {
+            Box above = rest;
+            above.lo[axis] = b.hi[axis];
+            out[count++] = above;
+            rest.hi[axis] = b.hi[axis];
+        }
+    }
+    return count;
+}
+
+// A box that only grew or moved (FrameChange::facesKept): hulls where the old box and the
+// new one differ, each way. A ray that ends on neither of those places, or passes neither,
+// meets the new box exactly where it met the old one (README.md, "Boxes that grow").
+void AddBoxChangeHulls(const UnitSignature &old, const UnitSignature &now, FrameChange &change) {
+    Box parts[12];
+    int count = BoxMinus(old.corners, now.corners, parts);
+    count += BoxMinus(now.corners, old.corners, parts + count);
+    for (int i = 0; i < count; ++i) {
+        const Hull hull = MakeHull(parts[i]);
+        change.hulls.push_back(hull);
+        if (old.translucent || now.translucent) change.translucentHulls.push_back(hull);
+    }
 }
 
 // After the hulls: the CSGs (cutGroup, in the last frame and in this one) a part of which
@@ -195,13 +236,39 @@ FrameChange CompareFrames(const FrameSetup &lastSetup, const SceneSignature &las
         }
     }
     std::vector<std::pair<std::uint32_t, std::uint32_t>> recolouredParts;  // (unit, its index in vanished)
+    std::vector<std::uint8_t> taken(change.vanished.size(), 0);
+    std::vector<std::uint32_t> reshaped;  // appeared units whose geometry is new
     for (std::uint32_t i : appeared) {
         std::uint32_t same;
         if (now.units[i].cutPart ? oldParts.Take(now.units[i].geometry, same)
                                   : oldShapes.Take(now.units[i].geometry, same)) {
             change.shadowsKept[same] = now.units[i].opaque ? 1 : 0;
             change.continues[i] = change.vanished[same];
+            taken[same] = 1;
             if (now.units[i].cutPart) recolouredParts.emplace_back(i, same);
+            continue;
+        }
+        reshaped.push_back(i);
+    }
+    // Boxes that only grew or moved, matched in the scene's order among those with the same
+    // key (the bars of a chart may share one): added last first, as Take gives the last.
+    KeyedIndices oldBoxes;
+    change.facesKept.assign(change.vanished.size(), 0);
+    std::vector<std::uint32_t> byPlace(change.vanished.size());
+    for (std::uint32_t k = 0; k < byPlace.size(); ++k) byPlace[k] = k;
+    std::sort(byPlace.begin(), byPlace.end(),
+              [&](std::uint32_t a, std::uint32_t b) { return change.vanished[a] > change.vanished[b]; });
+    for (std::uint32_t k : byPlace)
+        if (!taken[k] && last.units[change.vanished[k]].cornerBox)
+            oldBoxes.Add(last.units[change.vanished[k]].cornerless, k);
+    for (std::uint32_t i : reshaped) {
+        std::uint32_t same;
+        if (now.units[i].cornerBox && oldBoxes.Take(now.units[i].cornerless, same)) {
+            change.facesKept[same] = 1;
+            change.continues[i] = change.vanished[same];
+            AddBoxChangeHulls(last.units[change.vanished[same]], now.units[i], change);
+            if (now.units[i].hasBlockingBox && change.blockers.size() < FrameChange::kMaxBlockers)
+                change.blockers.push_back(Blocker::OfBox(now.units[i].blockingBox, i));
             continue;
         }
         if (now.units[i].cutPart) reshapedNow.insert(now.units[i].cutGroup);

@@ -341,6 +341,70 @@ TEST(ChangeDetection, TheBallsAmongTheNewShapesAreTheFramesBlockers) {
     EXPECT_TRUE(CompareFrames(Frame(), Scene({ball}), Frame(), Scene({ball}), false).blockers.empty());
 }
 
+// A box kept between its corners with everything else about it `cornerless`.
+UnitSignature CornerBox(std::uint64_t hash, std::uint64_t cornerless, Box corners) {
+    UnitSignature u = Unit(hash, hash, 0);
+    u.bounds = corners;
+    u.cornerBox = true;
+    u.cornerless = cornerless;
+    u.corners = corners;
+    return u;
+}
+
+bool AnyHullHolds(const std::vector<Hull> &hulls, const Vec3 &p) {
+    for (const Hull &h : hulls)
+        if (h.box.Contains(p)) return true;
+    return false;
+}
+
+TEST(ChangeDetection, ABoxThatOnlyGrewKeepsItsIdAndIsTestedWhereTheBoxesDiffer) {
+    const UnitSignature bar = CornerBox(10, 77, Box{{0, 0, 0}, {1, 2, 1}});
+    const UnitSignature grown = CornerBox(11, 77, Box{{0, 0, 0}, {1, 3, 1}});
+    const FrameChange change = CompareFrames(Frame(), Scene({bar}), Frame(), Scene({grown}), false);
+    ASSERT_EQ(change.vanished, std::vector<std::uint32_t>{0});
+    EXPECT_EQ(change.facesKept, std::vector<std::uint8_t>{1});
+    EXPECT_EQ(change.continues, std::vector<std::uint32_t>{0});
+    // Invariant: every point in one box and not the other is in a hull; a point well
+    // inside both, or outside both, is in none.
+    EXPECT_TRUE(AnyHullHolds(change.hulls, Vec3{0.5, 2.5, 0.5}));
+    EXPECT_TRUE(AnyHullHolds(change.hulls, Vec3{0.5, 2.0, 0.5}));  // the old top face
+    EXPECT_FALSE(AnyHullHolds(change.hulls, Vec3{0.5, 1.0, 0.5}));
+    EXPECT_FALSE(AnyHullHolds(change.hulls, Vec3{0.0, 1.0, 0.5}));  // a side face that stays
+    EXPECT_FALSE(AnyHullHolds(change.hulls, Vec3{0.5, 3.5, 0.5}));
+    // Shrunk, or moved: the place it left is tested too.
+    const FrameChange shrunk = CompareFrames(Frame(), Scene({grown}), Frame(), Scene({bar}), false);
+    EXPECT_TRUE(AnyHullHolds(shrunk.hulls, Vec3{0.5, 2.5, 0.5}));
+    const UnitSignature moved = CornerBox(12, 77, Box{{0.5, 0, 0}, {1.5, 2, 1}});
+    const FrameChange slid = CompareFrames(Frame(), Scene({bar}), Frame(), Scene({moved}), false);
+    EXPECT_TRUE(AnyHullHolds(slid.hulls, Vec3{0.25, 1, 0.5}));
+    EXPECT_TRUE(AnyHullHolds(slid.hulls, Vec3{1.25, 1, 0.5}));
+    EXPECT_FALSE(AnyHullHolds(slid.hulls, Vec3{0.75, 1, 0.5}));
+}
+
+TEST(ChangeDetection, ABoxThatChangedOtherwiseIsAChangedUnit) {
+    const UnitSignature bar = CornerBox(10, 77, Box{{0, 0, 0}, {1, 2, 1}});
+    UnitSignature plain = bar;
+    plain.cornerBox = false;  // turned, clipped, uv-mapped...
+    plain.hash = plain.geometry = 12;
+    for (const UnitSignature &now : {CornerBox(11, 78, Box{{0, 0, 0}, {1, 3, 1}}), plain}) {
+        const FrameChange change = CompareFrames(Frame(), Scene({bar}), Frame(), Scene({now}), false);
+        EXPECT_EQ(change.facesKept, std::vector<std::uint8_t>{0});
+        EXPECT_EQ(change.continues, std::vector<std::uint32_t>{FrameChange::kNew});
+        EXPECT_TRUE(AnyHullHolds(change.hulls, Vec3{0.5, 1.0, 0.5}));  // its whole new box
+    }
+}
+
+TEST(ChangeDetection, BarsSharingAKeyArePairedInOrder) {
+    const UnitSignature a = CornerBox(10, 77, Box{{0, 0, 0}, {1, 1, 1}});
+    const UnitSignature b = CornerBox(11, 77, Box{{5, 0, 0}, {6, 1, 1}});
+    const UnitSignature a2 = CornerBox(12, 77, Box{{0, 0, 0}, {1, 2, 1}});
+    const UnitSignature b2 = CornerBox(13, 77, Box{{5, 0, 0}, {6, 2, 1}});
+    const FrameChange change = CompareFrames(Frame(), Scene({a, b}), Frame(), Scene({a2, b2}), false);
+    EXPECT_EQ(change.continues, (std::vector<std::uint32_t>{0, 1}));
+    EXPECT_FALSE(AnyHullHolds(change.hulls, Vec3{0.5, 0.5, 0.5}));
+    EXPECT_FALSE(AnyHullHolds(change.hulls, Vec3{5.5, 0.5, 0.5}));
+}
+
 TEST(ChangeDetection, TheBoxesAmongTheNewShapesAreBlockersToo) {
     UnitSignature box = Unit(10, 100, 0), grown = Unit(11, 110, 4);
     box.hasBlockingBox = grown.hasBlockingBox = true;

@@ -202,7 +202,10 @@ void FrameCoherence::NumberUnits(const FrameChange &change, std::size_t unitCoun
         const std::uint32_t id = unitIds_.Previous(change.vanished[k]);
         if (id == UnitIds::kNone || id >= changedUnits_.size()) continue;
         const bool shadowsKept = k < change.shadowsKept.size() && change.shadowsKept[k];
-        changedUnits_[id] = shadowsKept ? FramePlan::kUnitRecoloured : FramePlan::kUnitChanged;
+        const bool facesKept = k < change.facesKept.size() && change.facesKept[k];
+        changedUnits_[id] = facesKept     ? FramePlan::kUnitFacesKept
+                            : shadowsKept ? FramePlan::kUnitRecoloured
+                                          : FramePlan::kUnitChanged;
         changedIds_.push_back(id);
         plan_.changedUnitMask |= UnitMaskBit(id);
     }

@@ -77,7 +77,7 @@ ParseHasher::ParseHasher() { BeginParse(); }
 
 void ParseHasher::BeginParse() {
     scopes_.clear();
-    scopes_.push_back(Scope{kSeed, 0, kSeed, kSeed, false, 0});
+    scopes_.push_back(Scope{kSeed, 0, kSeed, kSeed, false, 0, kSeed, 0});
     inToken_ = false;
     slots_.clear();
 }
@@ -165,12 +165,13 @@ void ParseHasher::MixCarriedWord(std::uint64_t word) {
     if (scope.trackShell) {
         scope.shell = Mix(scope.shell, kCarriedMarker);
         if (scope.appearance == 0) scope.geometry = Mix(scope.geometry, kCarriedMarker);
+        if (scope.corners == 0) scope.cornerless = Mix(scope.cornerless, kCarriedMarker);
     }
 }
 
 void ParseHasher::PushScope(bool trackShell) {
     if (!enabled_) return;
-    scopes_.push_back(Scope{kSeed, 0, kSeed, kSeed, trackShell, 0});
+    scopes_.push_back(Scope{kSeed, 0, kSeed, kSeed, trackShell, 0, kSeed, 0});
 }
 
 ParseHasher::ObjectHashes ParseHasher::PopObjectScope(ObjectRole role) {
@@ -181,21 +182,24 @@ ParseHasher::ObjectHashes ParseHasher::PopObjectScope(ObjectRole role) {
     result.hash = Finish(popped.hash);
     result.shell = Finish(popped.shell);
     result.geometry = Finish(popped.geometry);
+    result.cornerless = Finish(popped.cornerless);
     result.effects = popped.effects;
     if (role == ObjectRole::kNone) return result;
     Scope &parent = scopes_.back();
     parent.hash = Mix(parent.hash, result.hash);
     parent.effects |= popped.effects;
     if (!parent.trackShell) return result;
-    std::uint64_t shell = result.hash, geometry = result.hash;
+    std::uint64_t shell = result.hash, geometry = result.hash, cornerless = result.hash;
     if (role == ObjectRole::kChild) {
-        shell = geometry = kChildMarker;
+        shell = geometry = cornerless = kChildMarker;
     } else if (role == ObjectRole::kSameObject) {
         shell = result.shell;
         geometry = result.geometry;
+        cornerless = result.cornerless;
     }
     parent.shell = Mix(parent.shell, shell);
     if (parent.appearance == 0) parent.geometry = Mix(parent.geometry, geometry);
+    if (parent.corners == 0) parent.cornerless = Mix(parent.cornerless, cornerless);
     return result;
 }
 

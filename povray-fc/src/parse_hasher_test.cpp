@@ -4,6 +4,7 @@
 #include <cstdint>
 #include <cstdio>
 #include <cstdlib>
+#include <utility>
 #include <limits>
 #include <set>
 #include <string>
@@ -445,6 +446,49 @@ TEST(ParseHasher, AppearanceCountsInTheShellButNotInTheGeometry) {
     EXPECT_NE(object(1, 1).shell, object(2, 1).shell);
     EXPECT_EQ(object(1, 1).geometry, object(2, 1).geometry);
     EXPECT_NE(object(1, 1).geometry, object(1, 2).geometry);
+}
+
+TEST(ParseHasher, CornersCountInTheShellButNotInTheCornerlessHash) {
+    using Role = ParseHasher::ObjectRole;
+    // box { corner, corner [scale] pigment {colour} } wrapped as object { ... flag }
+    auto box = [](int corner, int colour, int flag) {
+        ParseHasher h;
+        h.PushObjectScope();  // the wrapper
+        h.PushObjectScope();  // the box
+        h.MixToken(100);
+        h.BeginCorners();
+        h.MixFloat(corner);
+        h.EndCorners();
+        h.BeginAppearance();
+        h.MixFloat(colour);
+        h.EndAppearance();
+        const auto inner = h.PopObjectScope(Role::kSameObject);
+        h.MixToken(flag);
+        const auto outer = h.PopObjectScope(Role::kOther);
+        return std::make_pair(inner, outer);
+    };
+    // Invariant: only the corners may differ between two objects whose cornerless hashes
+    // agree, at every level an object { } adds.
+    EXPECT_NE(box(1, 1, 7).first.shell, box(2, 1, 7).first.shell);
+    EXPECT_EQ(box(1, 1, 7).first.cornerless, box(2, 1, 7).first.cornerless);
+    EXPECT_EQ(box(1, 1, 7).second.cornerless, box(2, 1, 7).second.cornerless);
+    EXPECT_NE(box(1, 1, 7).first.cornerless, box(1, 2, 7).first.cornerless);
+    EXPECT_NE(box(1, 1, 7).second.cornerless, box(1, 1, 8).second.cornerless);
+    // A child's corners are its own: the parent's cornerless hash keeps a marker for it
+    // (Role::kChild), and an object parsed for another purpose (a clip, a pattern) counts
+    // whole.
+    auto parent = [](int corner, Role role) {
+        ParseHasher h;
+        h.PushObjectScope();
+        h.PushObjectScope();
+        h.BeginCorners();
+        h.MixFloat(corner);
+        h.EndCorners();
+        h.PopObjectScope(role);
+        return h.PopObjectScope(Role::kOther).cornerless;
+    };
+    EXPECT_EQ(parent(1, Role::kChild), parent(2, Role::kChild));
+    EXPECT_NE(parent(1, Role::kOther), parent(2, Role::kOther));
 }
 
 TEST(ParseHasher, ACopiedObjectIdentifierIsCarriedNotMixedIntoTheShell) {

@@ -117,6 +117,15 @@ void SignatureBuilder::SetUnitBlockingBox(std::uint32_t unit, const Box &box) {
     u.blockingBox = box;
 }
 
+void SignatureBuilder::SetUnitCornerBox(std::uint32_t unit, std::uint64_t cornerless, const Box &corners) {
+    if (unit >= signature_.units.size() || corners.Empty() || !corners.IsFinite()) return;
+    UnitSignature &u = signature_.units[unit];
+    if (u.infinite || u.cutPart) return;
+    u.cornerBox = true;
+    u.cornerless = cornerless;
+    u.corners = corners;
+}
+
 void SignatureBuilder::EndItem(ParseItemClass itemClass, std::uint64_t hash, bool addedLights,
                                unsigned effects) {
     if (itemClass != ParseItemClass::kDiscard) NoteEffects(effects);

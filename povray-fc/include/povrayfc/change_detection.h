@@ -43,6 +43,10 @@ struct FrameChange {
     // has its shape and is opaque (its texture alone changed).
     std::vector<std::uint32_t> vanished;
     std::vector<std::uint8_t> shadowsKept;
+    // Per vanished unit: a box of this frame continues it that only grew or moved
+    // (UnitSignature::cornerBox): what ended on it is tested against the hulls, which hold
+    // where the two boxes differ, instead of being dirty (FramePlan::kUnitFacesKept).
+    std::vector<std::uint8_t> facesKept;
     // The hulls of this frame's units whose geometry is new, and the balls and boxes among
     // them that darken shadow tests (UnitSignature::ball, blockingBox; at most kMaxBlockers).
     std::vector<Hull> hulls;

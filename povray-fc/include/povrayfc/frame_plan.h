@@ -61,6 +61,11 @@ struct FramePlan {
     // it stopped as an opaque blocker holds only while it meets none of the frame's hulls;
     // what ended on it otherwise is tested against the hulls as usual.
     static constexpr std::uint8_t kUnitSiblingChanged = 3;
+    // A box that only grew or moved (FrameChange::facesKept): a ray that ended on it meets
+    // the new box where it met the old one unless it meets the hulls, which hold where the
+    // two differ; a shadow test it stopped as an opaque blocker holds while a blocker of the
+    // frame crosses it, as for a changed unit.
+    static constexpr std::uint8_t kUnitFacesKept = 4;
     const std::vector<std::uint8_t> *changedUnits = nullptr;
     std::uint64_t changedUnitMask = 0;
     // The opaque balls among this frame's new shapes: a shadow test a changed unit's opaque

@@ -26,7 +26,11 @@
 //  - a shell: everything but its CSG children's scopes and the contents of the object
 //    identifiers it copies (a copy carries the hashes of its declaration's objects), and
 //  - a geometry hash: the shell without its appearance (texture, pigment, normal, finish,
-//    interior, material), so that a change of colour alone is told from a change of shape.
+//    interior, material), so that a change of colour alone is told from a change of shape;
+//  - a cornerless hash: the shell without a box's corners and the moves and scalings it
+//    gets before anything else (they only move its corners), so that a box that only grew
+//    or moved is told from one that changed in any other way (povray-fc/README.md, "Boxes
+//    that grow").
 // A SignatureBuilder (signature_builder.h) sorts the finished items and units into a
 // SceneSignature.
 //
@@ -100,6 +104,7 @@ public:
         if (scope.trackShell) {
             scope.shell = Mix(scope.shell, word);
             if (scope.appearance == 0) scope.geometry = Mix(scope.geometry, word);
+            if (scope.corners == 0) scope.cornerless = Mix(scope.cornerless, word);
         }
     }
     // A word that counts in the hash but is carried elsewhere for the shell and geometry
@@ -148,7 +153,7 @@ public:
         kNone,        // the parser found no object: the scope is dropped
     };
     struct ObjectHashes {
-        std::uint64_t hash = 0, shell = 0, geometry = 0;
+        std::uint64_t hash = 0, shell = 0, geometry = 0, cornerless = 0;
         unsigned effects = 0;
     };
     void PushObjectScope() { PushScope(true); }
@@ -160,6 +165,15 @@ public:
     }
     void EndAppearance() {
         if (enabled_ && Top().appearance > 0) --Top().appearance;
+    }
+    // Tokens between BeginCorners and EndCorners (a box's corners, and a translate or scale
+    // before the box has a texture, an interior or a transformation) do not count in its
+    // cornerless hash.
+    void BeginCorners() {
+        if (enabled_) ++Top().corners;
+    }
+    void EndCorners() {
+        if (enabled_ && Top().corners > 0) --Top().corners;
     }
     // Ends the innermost scope and returns its hash (and, with `effects`, its effects);
     // with mixIntoParent the hash is also mixed into the scope around it and the
@@ -180,7 +194,7 @@ public:
     // (callgrind). No scope may be pushed or popped in between.
     void BeginToken() {
         if (!enabled_) return;
-        token_ = Scope{kSeed, 0, kSeed, kSeed, false, 0};
+        token_ = Scope{kSeed, 0, kSeed, kSeed, false, 0, kSeed, 0};
         inToken_ = true;
     }
     // carried: the token is an object identifier the parser copies (see MixCarriedWord).
@@ -236,6 +250,8 @@ private:
         std::uint64_t geometry;
         bool trackShell;
         int appearance;  // BeginAppearance depth
+        std::uint64_t cornerless;
+        int corners;     // BeginCorners depth
     };
     struct Slot {
         std::uint64_t hash;
@@ -243,7 +259,7 @@ private:
     };
     static constexpr std::uint64_t kSeed = 0x243f6a8885a308d3ULL;  // a fresh scope's hash (pi's fraction)
     std::vector<Scope> scopes_;
-    Scope token_{kSeed, 0, kSeed, kSeed, false, 0};   // BeginToken ... EndToken
+    Scope token_{kSeed, 0, kSeed, kSeed, false, 0, kSeed, 0};   // BeginToken ... EndToken
     bool inToken_ = false;                  // token_ is the innermost scope
     Scope &Top() { return inToken_ ? token_ : scopes_.back(); }
     const Scope &Top() const { return inToken_ ? token_ : scopes_.back(); }

@@ -68,6 +68,13 @@ struct UnitSignature {
     Ball ball;
     bool hasBlockingBox = false;
     Box blockingBox;
+    // A box POV-Ray keeps between its corners (fc-scene's IsCornerBox: no transformation,
+    // clip, bound or uv-mapped texture), with the hash of everything about it and around it
+    // but its corners: a box of the next frame with the same key only grew or moved
+    // (README.md, "Boxes that grow").
+    bool cornerBox = false;
+    std::uint64_t cornerless = 0;
+    Box corners;
     // A part of a merge, intersection or difference, a unit of its own: where its solid
     // is decides which surfaces of the other parts count (POV-Ray's inside tests), so when
     // it changes in any way every ray through its old or its new box is tested, and its

@@ -64,6 +64,9 @@ public:
     void SetUnitBall(std::uint32_t unit, const Vec3 &centre, double radius);
     // The unit is an opaque, shadow-casting box never turned (UnitSignature::blockingBox).
     void SetUnitBlockingBox(std::uint32_t unit, const Box &box);
+    // The unit is a box kept between its corners, `cornerless` everything else about it
+    // (UnitSignature::cornerBox).
+    void SetUnitCornerBox(std::uint32_t unit, std::uint64_t cornerless, const Box &corners);
     // A new merge, intersection or difference whose parts are units (its number), and the
     // unit that is one of its parts (UnitSignature::cutPart, cutGroup).
     std::uint32_t NewCutGroup() { return ++cutGroups_; }
