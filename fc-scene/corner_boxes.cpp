@@ -72,16 +72,20 @@ bool TextureUsesUv(const pov::TEXTURE *texture)
 
 }  // namespace
 
-bool IsCornerBox(const pov::ObjectBase *object, Box &corners)
+bool CornersOf(const pov::ObjectBase *object, Box &corners)
 {
     const pov::Box *box = dynamic_cast<const pov::Box *>(object);
-    if (box == NULL || box->Trans != NULL || !box->Clip.empty() || !box->Bound.empty() ||
-        Test_Flag(box, INVERTED_FLAG) || Test_Flag(box, UV_FLAG) || TextureUsesUv(box->Texture) ||
-        TextureUsesUv(box->Interior_Texture))
+    if (box == NULL || box->Trans != NULL || Test_Flag(box, INVERTED_FLAG))
         return false;
     corners.lo = Vec3{box->bounds[0][pov::X], box->bounds[0][pov::Y], box->bounds[0][pov::Z]};
     corners.hi = Vec3{box->bounds[1][pov::X], box->bounds[1][pov::Y], box->bounds[1][pov::Z]};
     return true;
+}
+
+bool KeepsFacesWhenResized(const pov::ObjectBase *object)
+{
+    return object->Clip.empty() && object->Bound.empty() && !Test_Flag(object, UV_FLAG) &&
+           !TextureUsesUv(object->Texture) && !TextureUsesUv(object->Interior_Texture);
 }
 
 }  // namespace scene

@@ -15,13 +15,17 @@ namespace povrayfc
 namespace scene
 {
 
-// Whether `object` is a box POV-Ray keeps between its two corners (no transformation of its
-// own, so it intersects it in world space and its normal is its face's axis), unclipped,
-// unbounded by `bounded_by`, not inverted, and with no texture that reads the surface's
-// uv coordinates (a box's depend on its corners); if so, `corners` are its corners. Such a
-// box with the same cornerless hash in the next frame shows the same colour wherever a ray
-// still meets one of its faces that stayed in its plane.
-bool IsCornerBox(const pov::ObjectBase *object, Box &corners);
+// Whether `object` is a box POV-Ray keeps between its two corners, not inverted: it has no
+// transformation of its own (Box::Translate and Box::Scale move its corners until it is
+// turned), so POV-Ray intersects it in world space and its normal is its face's axis. If
+// so, `corners` are its corners.
+bool CornersOf(const pov::ObjectBase *object, Box &corners);
+
+// For such a box: unclipped, unbounded by `bounded_by`, and with no texture that reads the
+// surface's uv coordinates (a box's depend on its corners). With the same cornerless hash
+// in the next frame it shows the same colour wherever a ray still meets one of its faces
+// that stayed in its plane.
+bool KeepsFacesWhenResized(const pov::ObjectBase *object);
 
 }  // namespace scene
 }  // namespace povrayfc

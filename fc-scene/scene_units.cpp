@@ -146,19 +146,6 @@ bool BlockingBall(Object object, Ball &ball)
     return true;
 }
 
-// A box without a transformation of its own (Box::Translate and Box::Scale move its corners
-// until it is turned), which POV-Ray intersects between its corners in world space: it
-// darkens every shadow test crossing it (shadow_blockers.h), as a ball does.
-bool BlockingBox(Object object, Box &box)
-{
-    const pov::Box *shape = dynamic_cast<const pov::Box *>(object);
-    if (shape == nullptr || shape->Trans != nullptr || Test_Flag(object, INVERTED_FLAG) || !DarkensShadows(object))
-        return false;
-    box.lo = Vec3{shape->bounds[0][pov::X], shape->bounds[0][pov::Y], shape->bounds[0][pov::Z]};
-    box.hi = Vec3{shape->bounds[1][pov::X], shape->bounds[1][pov::Y], shape->bounds[1][pov::Z]};
-    return true;
-}
-
 bool IsUnion(Object object)
 {
     return dynamic_cast<CSGUnion *>(object) != nullptr && dynamic_cast<CSGMerge *>(object) == nullptr;
@@ -315,13 +302,17 @@ void AddUnits(Object object, std::uint64_t path, std::uint64_t pathGeometry, boo
     Ball ball;
     if (darkening && BlockingBall(object, ball))
         signature.SetUnitBall(unit, ball.centre, ball.radius);
-    Box box;
-    if (darkening && BlockingBox(object, box))
-        signature.SetUnitBlockingBox(unit, box);
+    // A box kept between its corners darkens every shadow test crossing it, as a ball does
+    // (shadow_blockers.h), and may keep its faces' rays when only its corners change.
     Box corners;
-    if (IsCornerBox(object, corners))
-        signature.SetUnitCornerBox(unit, CombineHashes(path, object->fcHash == 0 ? UniqueHashValue() : object->fcCornerless),
-                                   corners);
+    if (CornersOf(object, corners))
+    {
+        if (darkening && DarkensShadows(object))
+            signature.SetUnitBlockingBox(unit, corners);
+        if (KeepsFacesWhenResized(object))
+            signature.SetUnitCornerBox(unit, CombineHashes(path, object->fcHash == 0 ? UniqueHashValue() : object->fcCornerless),
+                                       corners);
+    }
     SetUnit(object, unit);
     if (unit != kUnitUnknown)
         unitObjects.push_back(object);

@@ -267,16 +267,14 @@ FrameChange CompareFrames(const FrameSetup &lastSetup, const SceneSignature &las
             change.facesKept[same] = 1;
             change.continues[i] = change.vanished[same];
             AddBoxChangeHulls(last.units[change.vanished[same]], now.units[i], change);
-            if (now.units[i].hasBlockingBox && change.blockers.size() < FrameChange::kMaxBlockers)
-                change.blockers.push_back(Blocker::OfBox(now.units[i].blockingBox, i));
-            continue;
+        } else {
+            if (now.units[i].cutPart) reshapedNow.insert(now.units[i].cutGroup);
+            if (!AddHull(now.units[i], change)) return change;
         }
-        if (now.units[i].cutPart) reshapedNow.insert(now.units[i].cutGroup);
-        if (!AddHull(now.units[i], change)) return change;
         if (now.units[i].hasBall && change.blockers.size() < FrameChange::kMaxBlockers)
             change.blockers.push_back(Blocker::OfBall(now.units[i].ball, i));
         if (now.units[i].hasBlockingBox && change.blockers.size() < FrameChange::kMaxBlockers)
-            change.blockers.push_back(Blocker::OfBox(now.units[i].blockingBox, i));
+            change.blockers.push_back(Blocker::OfBox(now.units[i].corners, i));
     }
     // The parts that changed shape: where they were.
     bool bounded = true;

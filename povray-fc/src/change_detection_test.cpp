@@ -408,7 +408,7 @@ TEST(ChangeDetection, BarsSharingAKeyArePairedInOrder) {
 TEST(ChangeDetection, TheBoxesAmongTheNewShapesAreBlockersToo) {
     UnitSignature box = Unit(10, 100, 0), grown = Unit(11, 110, 4);
     box.hasBlockingBox = grown.hasBlockingBox = true;
-    grown.blockingBox = Box{{0, 0, 0}, {2, 5, 1}};
+    grown.corners = Box{{0, 0, 0}, {2, 5, 1}};
     const FrameChange change = CompareFrames(Frame(), Scene({box}), Frame(), Scene({Unit(12, 120, 8), grown}), false);
     ASSERT_EQ(change.blockers.size(), 1u);
     EXPECT_TRUE(change.blockers[0].isBox);

@@ -114,7 +114,7 @@ void SignatureBuilder::SetUnitBlockingBox(std::uint32_t unit, const Box &box) {
     UnitSignature &u = signature_.units[unit];
     if (u.infinite) return;
     u.hasBlockingBox = true;
-    u.blockingBox = box;
+    u.corners = box;
 }
 
 void SignatureBuilder::SetUnitCornerBox(std::uint32_t unit, std::uint64_t cornerless, const Box &corners) {

@@ -48,7 +48,7 @@ struct FrameChange {
     // where the two boxes differ, instead of being dirty (FramePlan::kUnitFacesKept).
     std::vector<std::uint8_t> facesKept;
     // The hulls of this frame's units whose geometry is new, and the balls and boxes among
-    // them that darken shadow tests (UnitSignature::ball, blockingBox; at most kMaxBlockers).
+    // them that darken shadow tests (UnitSignature::ball, corners; at most kMaxBlockers).
     std::vector<Hull> hulls;
     static constexpr std::size_t kMaxBlockers = 256;
     std::vector<Blocker> blockers;

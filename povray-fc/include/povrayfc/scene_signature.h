@@ -66,12 +66,12 @@ struct UnitSignature {
     // (shadow_blockers.h).
     bool hasBall = false;
     Ball ball;
+    // A box POV-Ray keeps between its corners (fc-scene's CornersOf) has them here: a
+    // blocking box (hasBlockingBox) or one that keeps its faces' rays when only its
+    // corners change (cornerBox: no clip, bound or uv-mapped texture either), with the hash
+    // of everything about it and around it but its corners, so that a box of the next frame
+    // with the same key only grew or moved (README.md, "Boxes that grow").
     bool hasBlockingBox = false;
-    Box blockingBox;
-    // A box POV-Ray keeps between its corners (fc-scene's IsCornerBox: no transformation,
-    // clip, bound or uv-mapped texture), with the hash of everything about it and around it
-    // but its corners: a box of the next frame with the same key only grew or moved
-    // (README.md, "Boxes that grow").
     bool cornerBox = false;
     std::uint64_t cornerless = 0;
     Box corners;

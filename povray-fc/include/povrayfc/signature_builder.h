@@ -62,7 +62,7 @@ public:
     void SetUnitTranslucent(std::uint32_t unit);
     // The unit is an opaque, shadow-casting ball (UnitSignature::ball).
     void SetUnitBall(std::uint32_t unit, const Vec3 &centre, double radius);
-    // The unit is an opaque, shadow-casting box never turned (UnitSignature::blockingBox).
+    // The unit is an opaque, shadow-casting box never turned (UnitSignature::corners).
     void SetUnitBlockingBox(std::uint32_t unit, const Box &box);
     // The unit is a box kept between its corners, `cornerless` everything else about it
     // (UnitSignature::cornerBox).
