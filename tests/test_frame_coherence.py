@@ -50,8 +50,11 @@ SCENE_FILES = sorted(FC_SCENES.glob("*.pov"))
 def test_fc_frames_equal_full_renders(scene, tmp_path):
     speedup, options = scene_header(scene)
     full = render_animation(scene, tmp_path / "off", False, 1, options)
-    for threads in (1, 2):
-        coherent = render_animation(scene, tmp_path / f"on-wt{threads}", True, threads, options)
+    # One thread with the default budget: a store this small writes its segments in full.
+    # Two threads with an 8 MiB budget: the store packs them past its first 128 KiB
+    # (SampleStore::PackTightly), so both forms, and records mixing them, are checked.
+    for threads, budget in ((1, []), (2, ["Frame_Coherence_Memory=8"])):
+        coherent = render_animation(scene, tmp_path / f"on-wt{threads}", True, threads, [*options, *budget])
         for n in range(1, FRAMES + 1):
             assert_same_pixels(tmp_path / "off" / f"f{n}.tga", tmp_path / f"on-wt{threads}" / f"f{n}.tga")
     if speedup:
@@ -228,6 +231,26 @@ def test_isosurface_with_too_low_max_gradient_does_not_depend_on_the_pixel_trace
     render_animation(scene, tmp_path / "bs8", False, 1, ["+BS8"])
     for n in range(1, FRAMES + 1):
         assert_same_pixels(tmp_path / "bs32" / f"f{n}.tga", tmp_path / "bs8" / f"f{n}.tga")
+
+
+def test_a_store_past_a_64th_of_its_budget_packs_what_it_records(tmp_path):
+    # Segments are written in full while the store is small against its budget, and packed
+    # past a 64th of it: the same frames, in fewer bytes, with the same pixels re-traced
+    # but for the few a packed segment's other rounding moves across a hull's edge.
+    scene = FC_SCENES / "glass_under_blocker.pov"
+    size = ["+W160", "+H120"]
+    full = render_animation(scene, tmp_path / "off", False, 1, size)
+    roomy = render_animation(scene, tmp_path / "roomy", True, 1, size)
+    tight = render_animation(scene, tmp_path / "tight", True, 1, [*size, "Frame_Coherence_Memory=8"])
+    for n in range(1, FRAMES + 1):
+        assert_same_pixels(tmp_path / "off" / f"f{n}.tga", tmp_path / "roomy" / f"f{n}.tga")
+        assert_same_pixels(tmp_path / "off" / f"f{n}.tga", tmp_path / "tight" / f"f{n}.tga")
+    assert all(r["over_budget_blocks"] == "0" for r in roomy + tight)
+    assert int(tight[0]["store_bytes"]) < 0.9 * int(roomy[0]["store_bytes"])
+    assert int(tight[0]["store_bytes"]) > (8 << 20) // 64
+    roomy_traced = sum(int(r["traced"]) for r in roomy[1:])
+    tight_traced = sum(int(r["traced"]) for r in tight[1:])
+    assert abs(roomy_traced - tight_traced) <= 0.02 * roomy_traced
 
 
 def test_store_past_its_memory_budget_traces_those_blocks_in_full(tmp_path):

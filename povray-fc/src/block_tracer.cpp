@@ -194,6 +194,7 @@ bool BlockTracer::Begin(std::uint32_t serial, int left, int top, int right, int 
     tracedPixels_.assign(area, 0);
 
     plan.store->Touch(serial);
+    packTightly_ = plan.store->PackTightly();
     old_ = plan.store->Find(serial);
     leftOut_ = old_ == nullptr && plan.store->LeftOut(serial);
     if (old_ && (!old_->Covers(left, top, right, bottom) || old_->opaque != !record_)) old_ = nullptr;
@@ -378,7 +379,8 @@ bool BlockTracer::Reuse(double x, double y, float rgbft[5]) {
 
 void BlockTracer::BeginSample() {
     if (!active_ || !record_) return;
-    recorder_.Begin(nextSegments_, nextFanOf_, next_.packed, next_.apexes, plan_->unitIds, plan_->unitCount);
+    recorder_.Begin(nextSegments_, nextFanOf_, next_.packed, next_.apexes, plan_->unitIds, plan_->unitCount,
+                    packTightly_);
     StartRecordingRays(recorder_);
 }
 

@@ -2,6 +2,7 @@
 // tolerance of the traced rays, and packed small.
 #include <cmath>
 #include <cstring>
+#include <memory>
 #include <random>
 #include <vector>
 
@@ -177,6 +178,90 @@ TEST(SegmentPacking, ALengthToTheLightIsNeverShorterThanTraced) {
         ASSERT_EQ(bytes[1] & packing::kDirectionMask, packing::kDirectionToApex);
         EXPECT_GE(double(s.length), tmax * (std::fabs(d[0]) + std::fabs(d[1]) + std::fabs(d[2])));
     }
+}
+
+TEST(SegmentPacking, SegmentsWrittenInFullReadBackAsMakeSegmentRoundsThemBesidePackedOnes) {
+    std::mt19937_64 rng(5);
+    FanApexes apexes;
+    std::vector<std::uint8_t> bytes;
+    std::vector<std::uint32_t> firsts, counts;
+    std::vector<std::vector<Ray>> samples;
+    std::vector<Segment> promised;
+    for (int i = 0; i < 200; ++i) {
+        // Samples of either form in one record, as a store that passes its threshold keeps.
+        const bool full = i % 3 != 0;
+        const std::vector<Ray> rays = SampleRays(rng, apexes, i % 2 ? 1000.0 : 0.0);
+        firsts.push_back(std::uint32_t(bytes.size()));
+        std::vector<Segment> sample;
+        for (const Ray &r : rays) {
+            Segment s;
+            const std::size_t before = bytes.size();
+            if (full) {
+                ASSERT_TRUE(PackSegmentInFull(r.origin, r.direction, r.tmax, r.unit, r.fan, bytes, s));
+                Segment plain;
+                ASSERT_TRUE(MakeSegment(r.origin, r.direction, r.tmax, plain));
+                plain.unit = r.unit;
+                EXPECT_EQ(std::memcmp(&s, &plain, sizeof(Segment)), 0);
+                EXPECT_EQ(bytes.size() - before, r.unit == Segment::kNoUnit ? 30u : 34u);
+            } else {
+                ASSERT_TRUE(PackSegment(r.origin, r.direction, r.tmax, r.unit, r.fan, sample.data(), sample.size(),
+                                        apexes, bytes, s));
+            }
+            sample.push_back(s);
+        }
+        promised.insert(promised.end(), sample.begin(), sample.end());
+        counts.push_back(std::uint32_t(rays.size()));
+        samples.push_back(rays);
+    }
+    std::size_t k = 0;
+    for (std::size_t i = 0; i < samples.size(); ++i) {
+        std::vector<Segment> segments(counts[i]);
+        std::vector<std::uint8_t> fanOf(counts[i]);
+        ASSERT_TRUE(UnpackSample(bytes.data() + firsts[i], counts[i], apexes, segments.data(), fanOf.data()));
+        EXPECT_EQ(PackedSize(bytes.data() + firsts[i], counts[i]),
+                  (i + 1 < firsts.size() ? firsts[i + 1] : bytes.size()) - firsts[i]);
+        std::uint32_t unit;
+        const std::uint8_t *header = bytes.data() + firsts[i];
+        for (std::size_t j = 0; j < segments.size(); ++j, ++k) {
+            EXPECT_EQ(std::memcmp(&segments[j], &promised[k], sizeof(Segment)), 0) << "sample " << i;
+            EXPECT_EQ(fanOf[j], samples[i][j].fan);
+            ExpectHolds(segments[j], samples[i][j]);
+            header = NextPacked(header, unit);
+            EXPECT_EQ(unit, samples[i][j].unit);
+        }
+    }
+    // A unit written in full takes any id.
+    Segment s;
+    const double o[3] = {1, 2, 3}, d[3] = {0, 0, 1};
+    std::vector<std::uint8_t> one;
+    ASSERT_TRUE(PackSegmentInFull(o, d, 1.0, 7, FanApexes::kLoose, one, s));
+    EXPECT_TRUE(RewritePackedUnit(one.data(), 123456 | Segment::kOpaqueBlocker));
+    const double bad[3] = {1, NAN, 3};
+    EXPECT_FALSE(PackSegmentInFull(bad, d, 1.0, 7, FanApexes::kLoose, one, s));
+    EXPECT_EQ(one.size(), 34u);
+}
+
+TEST(SegmentPacking, AStorePacksOnceItHoldsASixtyFourthOfItsBudgetOrTheBound) {
+    // Budgets in whole MiB, as Frame_Coherence_Memory gives them.
+    SampleStore small(4, std::size_t(8) << 20);
+    EXPECT_FALSE(small.PackTightly());
+    auto record = std::make_unique<BlockRecord>();
+    record->packed.resize((std::size_t(8) << 20) / 64);
+    ASSERT_TRUE(small.Put(0, std::move(record)));
+    EXPECT_TRUE(small.PackTightly());
+    small.Clear();
+    EXPECT_FALSE(small.PackTightly());
+
+    // A large budget packs from the bound on, not from a 64th of it.
+    SampleStore large(4, std::size_t(1) << 40);
+    auto big = std::make_unique<BlockRecord>();
+    big->packed.resize(SampleStore::kFullSegmentsUpTo - (std::size_t(1) << 20));
+    ASSERT_TRUE(large.Put(0, std::move(big)));
+    EXPECT_FALSE(large.PackTightly());
+    auto more = std::make_unique<BlockRecord>();
+    more->packed.resize(std::size_t(2) << 20);
+    ASSERT_TRUE(large.Put(1, std::move(more)));
+    EXPECT_TRUE(large.PackTightly());
 }
 
 TEST(SegmentPacking, UnitsAreReadAndRewrittenWithinTheirWidth) {

@@ -99,6 +99,7 @@ class BlockTracer {
     bool record_ = false;   // mode kRecord: samples and segments are kept
     bool leftOut_ = false;  // the memory budget left this block's record out (traced in full)
     bool conesPassedBudget_ = false;  // its record went when its cones passed the budget
+    bool packTightly_ = true;         // the store holds enough to pack what it records (SampleStore)
     std::uint32_t serial_ = 0;
     BlockRecord *old_ = nullptr;             // the stored record, when it may be reused from
     std::vector<std::uint8_t> oldDirty_;     // per old sample

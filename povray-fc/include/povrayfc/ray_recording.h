@@ -45,9 +45,11 @@ class SampleRecorder {
     // Starts a sample whose segments are packed onto the end of `packed` (segment_packing.h)
     // and, as unpacking will give them, appended to `segments` (their fans to `fanOf`),
     // against the block's `apexes`. `unitIds[i]` is the id of the frame's unit i
-    // (unit_ids.h), for `unitCount` units.
+    // (unit_ids.h), for `unitCount` units. `tightly`: pack each segment (PackSegment), or
+    // write it in full (PackSegmentInFull).
     void Begin(std::vector<Segment> &segments, std::vector<std::uint8_t> &fanOf, std::vector<std::uint8_t> &packed,
-               FanApexes &apexes, const std::uint32_t *unitIds, std::size_t unitCount) {
+               FanApexes &apexes, const std::uint32_t *unitIds, std::size_t unitCount, bool tightly = true) {
+        tightly_ = tightly;
         segments_ = &segments;
         fanOf_ = &fanOf;
         packed_ = &packed;
@@ -149,8 +151,10 @@ class SampleRecorder {
                std::uint8_t fan) {
         Segment s;
         const std::size_t at = packed_->size();
-        if (!PackSegment(origin, direction, tmax, unit, fan, segments_->data() + first_, Count(), *apexes_, *packed_,
-                         s)) {
+        const bool stored = tightly_ ? PackSegment(origin, direction, tmax, unit, fan, segments_->data() + first_,
+                                                   Count(), *apexes_, *packed_, s)
+                                     : PackSegmentInFull(origin, direction, tmax, unit, fan, *packed_, s);
+        if (!stored) {
             everything_ = true;
             return false;
         }
@@ -177,6 +181,7 @@ class SampleRecorder {
     std::vector<std::uint32_t> byteStart_;  // per segment of the sample: where it is packed
     std::size_t firstByte_ = 0;
     std::size_t first_ = 0;
+    bool tightly_ = true;
     bool everything_ = false;
     bool deep_ = false;  // a reflected or refracted ray was recorded in this sample
     bool orderSensitive_ = false;

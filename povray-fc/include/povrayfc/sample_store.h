@@ -214,6 +214,14 @@ class SampleStore {
     std::size_t AccountedBytes() const { return total_.load(std::memory_order_relaxed); }
     std::size_t BudgetBytes() const { return budget_; }
 
+    // While the store holds less than this, or a 64th of its budget if less, a block that
+    // starts recording writes its segments in full (PackSegmentInFull, a sixth of packing's
+    // instructions, three times its bytes); past it, it packs them (PackSegment). So
+    // recording pays for packing only where memory counts, and the full form's extra bytes
+    // stay under a 32nd of the budget (povray-fc/README.md, "Memory and its budget").
+    static constexpr std::size_t kFullSegmentsUpTo = std::size_t(64) << 20;
+    bool PackTightly() const { return AccountedBytes() >= std::min(kFullSegmentsUpTo, budget_ / 64); }
+
     // Block `serial` was rendered (or reused) this frame. From the thread rendering it.
     void Touch(std::size_t serial) {
         if (serial < touched_.size()) touched_[serial] = 1;
