@@ -215,7 +215,7 @@ class SampleStore {
     std::size_t BudgetBytes() const { return budget_; }
 
     // While the store holds less than this, or a 64th of its budget if less, a block that
-    // starts recording writes its segments in full (PackSegmentInFull, a sixth of packing's
+    // starts recording writes its segments in full (PackSegmentInFull, under half of packing's
     // instructions, three times its bytes); past it, it packs them (PackSegment). So
     // recording pays for packing only where memory counts, and the full form's extra bytes
     // stay under a 32nd of the budget (povray-fc/README.md, "Memory and its budget").

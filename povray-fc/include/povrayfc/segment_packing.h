@@ -109,7 +109,7 @@ bool PackSegment(const double origin[3], const double direction[3], double tmax,
                  std::vector<std::uint8_t> &out, Segment &packed);
 
 // The same segment with every field written in full (34 bytes, 30 when it ended on
-// nothing; `packed` is what MakeSegment gives): a sixth of PackSegment's instructions, for
+// nothing; `packed` is what MakeSegment gives): under half of PackSegment's instructions, for
 // three times the bytes. The store takes this form while memory is plentiful
 // (SampleStore::PackTightly); both forms unpack alike and may share a record.
 bool PackSegmentInFull(const double origin[3], const double direction[3], double tmax, std::uint32_t unit,
