@@ -239,7 +239,7 @@ def test_a_store_past_a_64th_of_its_budget_packs_what_it_records(tmp_path):
     # but for the few a packed segment's other rounding moves across a hull's edge.
     scene = FC_SCENES / "glass_under_blocker.pov"
     size = ["+W160", "+H120"]
-    full = render_animation(scene, tmp_path / "off", False, 1, size)
+    render_animation(scene, tmp_path / "off", False, 1, size)
     roomy = render_animation(scene, tmp_path / "roomy", True, 1, size)
     tight = render_animation(scene, tmp_path / "tight", True, 1, [*size, "Frame_Coherence_Memory=8"])
     for n in range(1, FRAMES + 1):
