@@ -4,6 +4,7 @@
 #include <cstring>
 #include <memory>
 #include <random>
+#include <string>
 #include <vector>
 
 #include <gtest/gtest.h>
@@ -98,44 +99,70 @@ void ExpectHolds(const Segment &s, const Ray &r) {
     EXPECT_EQ(s.unit, r.unit);
 }
 
+// Samples packed one after the other into one record, with what the packer promised.
+struct PackedSamples {
+    FanApexes apexes;
+    std::vector<std::uint8_t> bytes;
+    std::vector<Segment> promised;
+    std::vector<std::uint32_t> firsts;
+    std::vector<std::vector<Ray>> samples;
+
+    // Packs a sample's rays, each in full (PackSegmentInFull) or packed (PackSegment).
+    void Add(const std::vector<Ray> &rays, bool full) {
+        firsts.push_back(std::uint32_t(bytes.size()));
+        std::vector<Segment> sample;
+        for (const Ray &r : rays) {
+            Segment s;
+            const std::size_t before = bytes.size();
+            if (full) {
+                ASSERT_TRUE(PackSegmentInFull(r.origin, r.direction, r.tmax, r.unit, r.fan, bytes, s));
+                Segment plain;
+                ASSERT_TRUE(MakeSegment(r.origin, r.direction, r.tmax, plain));
+                plain.unit = r.unit;
+                EXPECT_EQ(std::memcmp(&s, &plain, sizeof(Segment)), 0);
+                EXPECT_EQ(bytes.size() - before, r.unit == Segment::kNoUnit ? 30u : 34u);
+            } else {
+                ASSERT_TRUE(PackSegment(r.origin, r.direction, r.tmax, r.unit, r.fan, sample.data(), sample.size(),
+                                        apexes, bytes, s));
+            }
+            sample.push_back(s);
+        }
+        promised.insert(promised.end(), sample.begin(), sample.end());
+        samples.push_back(rays);
+    }
+
+    // Every sample unpacks on its own to what was promised, holds its traced rays, spans
+    // the bytes up to the next, and its units read without unpacking.
+    void ExpectReadBack(const std::string &what) const {
+        std::size_t k = 0;
+        for (std::size_t i = 0; i < samples.size(); ++i) {
+            const std::uint32_t count = std::uint32_t(samples[i].size());
+            std::vector<Segment> segments(count);
+            std::vector<std::uint8_t> fanOf(count);
+            ASSERT_TRUE(UnpackSample(bytes.data() + firsts[i], count, apexes, segments.data(), fanOf.data()));
+            EXPECT_EQ(PackedSize(bytes.data() + firsts[i], count),
+                      (i + 1 < firsts.size() ? firsts[i + 1] : bytes.size()) - firsts[i]);
+            std::uint32_t unit;
+            const std::uint8_t *header = bytes.data() + firsts[i];
+            for (std::size_t j = 0; j < count; ++j, ++k) {
+                EXPECT_EQ(std::memcmp(&segments[j], &promised[k], sizeof(Segment)), 0) << what << ", sample " << i;
+                EXPECT_EQ(fanOf[j], samples[i][j].fan);
+                ExpectHolds(segments[j], samples[i][j]);
+                header = NextPacked(header, unit);
+                EXPECT_EQ(unit, samples[i][j].unit);
+            }
+        }
+    }
+};
+
 TEST(SegmentPacking, WhatIsReadBackIsWhatThePackerPromisedAndHoldsTheTracedRay) {
     std::mt19937_64 rng(3);
     for (double scale : {0.0, 1.0, 1000.0, 1e6}) {
-        FanApexes apexes;
-        std::vector<std::uint8_t> bytes;
-        std::vector<Segment> promised;
-        std::vector<std::uint32_t> firsts, counts;
-        std::vector<std::vector<Ray>> samples;
-        for (int i = 0; i < 300; ++i) {
-            const std::vector<Ray> rays = SampleRays(rng, apexes, scale);
-            firsts.push_back(std::uint32_t(bytes.size()));
-            std::vector<Segment> sample;
-            for (const Ray &r : rays) {
-                Segment s;
-                ASSERT_TRUE(PackSegment(r.origin, r.direction, r.tmax, r.unit, r.fan, sample.data(), sample.size(),
-                                        apexes, bytes, s));
-                sample.push_back(s);
-            }
-            promised.insert(promised.end(), sample.begin(), sample.end());
-            counts.push_back(std::uint32_t(rays.size()));
-            samples.push_back(rays);
-        }
-        std::size_t k = 0, total = 0;
-        for (std::size_t i = 0; i < samples.size(); ++i) {
-            std::vector<Segment> segments(counts[i]);
-            std::vector<std::uint8_t> fanOf(counts[i]);
-            ASSERT_TRUE(UnpackSample(bytes.data() + firsts[i], counts[i], apexes, segments.data(), fanOf.data()));
-            EXPECT_EQ(PackedSize(bytes.data() + firsts[i], counts[i]),
-                      (i + 1 < firsts.size() ? firsts[i + 1] : bytes.size()) - firsts[i]);
-            for (std::size_t j = 0; j < segments.size(); ++j, ++k) {
-                EXPECT_EQ(std::memcmp(&segments[j], &promised[k], sizeof(Segment)), 0) << "scale " << scale;
-                EXPECT_EQ(fanOf[j], samples[i][j].fan);
-                ExpectHolds(segments[j], samples[i][j]);
-                ++total;
-            }
-        }
+        PackedSamples record;
+        for (int i = 0; i < 300; ++i) record.Add(SampleRays(rng, record.apexes, scale), false);
+        record.ExpectReadBack("scale " + std::to_string(scale));
         // The point: a sample's rays mostly repeat one another (33 bytes each unpacked).
-        EXPECT_LT(double(bytes.size()) / double(total), 17.0) << "scale " << scale;
+        EXPECT_LT(double(record.bytes.size()) / double(record.promised.size()), 17.0) << "scale " << scale;
     }
 }
 
@@ -182,54 +209,10 @@ TEST(SegmentPacking, ALengthToTheLightIsNeverShorterThanTraced) {
 
 TEST(SegmentPacking, SegmentsWrittenInFullReadBackAsMakeSegmentRoundsThemBesidePackedOnes) {
     std::mt19937_64 rng(5);
-    FanApexes apexes;
-    std::vector<std::uint8_t> bytes;
-    std::vector<std::uint32_t> firsts, counts;
-    std::vector<std::vector<Ray>> samples;
-    std::vector<Segment> promised;
-    for (int i = 0; i < 200; ++i) {
-        // Samples of either form in one record, as a store that passes its threshold keeps.
-        const bool full = i % 3 != 0;
-        const std::vector<Ray> rays = SampleRays(rng, apexes, i % 2 ? 1000.0 : 0.0);
-        firsts.push_back(std::uint32_t(bytes.size()));
-        std::vector<Segment> sample;
-        for (const Ray &r : rays) {
-            Segment s;
-            const std::size_t before = bytes.size();
-            if (full) {
-                ASSERT_TRUE(PackSegmentInFull(r.origin, r.direction, r.tmax, r.unit, r.fan, bytes, s));
-                Segment plain;
-                ASSERT_TRUE(MakeSegment(r.origin, r.direction, r.tmax, plain));
-                plain.unit = r.unit;
-                EXPECT_EQ(std::memcmp(&s, &plain, sizeof(Segment)), 0);
-                EXPECT_EQ(bytes.size() - before, r.unit == Segment::kNoUnit ? 30u : 34u);
-            } else {
-                ASSERT_TRUE(PackSegment(r.origin, r.direction, r.tmax, r.unit, r.fan, sample.data(), sample.size(),
-                                        apexes, bytes, s));
-            }
-            sample.push_back(s);
-        }
-        promised.insert(promised.end(), sample.begin(), sample.end());
-        counts.push_back(std::uint32_t(rays.size()));
-        samples.push_back(rays);
-    }
-    std::size_t k = 0;
-    for (std::size_t i = 0; i < samples.size(); ++i) {
-        std::vector<Segment> segments(counts[i]);
-        std::vector<std::uint8_t> fanOf(counts[i]);
-        ASSERT_TRUE(UnpackSample(bytes.data() + firsts[i], counts[i], apexes, segments.data(), fanOf.data()));
-        EXPECT_EQ(PackedSize(bytes.data() + firsts[i], counts[i]),
-                  (i + 1 < firsts.size() ? firsts[i + 1] : bytes.size()) - firsts[i]);
-        std::uint32_t unit;
-        const std::uint8_t *header = bytes.data() + firsts[i];
-        for (std::size_t j = 0; j < segments.size(); ++j, ++k) {
-            EXPECT_EQ(std::memcmp(&segments[j], &promised[k], sizeof(Segment)), 0) << "sample " << i;
-            EXPECT_EQ(fanOf[j], samples[i][j].fan);
-            ExpectHolds(segments[j], samples[i][j]);
-            header = NextPacked(header, unit);
-            EXPECT_EQ(unit, samples[i][j].unit);
-        }
-    }
+    PackedSamples record;
+    // Samples of either form in one record, as a store that passes its threshold keeps.
+    for (int i = 0; i < 200; ++i) record.Add(SampleRays(rng, record.apexes, i % 2 ? 1000.0 : 0.0), i % 3 != 0);
+    record.ExpectReadBack("mixed");
     // A unit written in full takes any id.
     Segment s;
     const double o[3] = {1, 2, 3}, d[3] = {0, 0, 1};
