@@ -387,7 +387,9 @@ void BlockTracer::BeginSample() {
 void BlockTracer::EndSample(double x, double y, const float rgbft[5]) {
     if (!active_) return;
     ++tracedSamples_;
-    MarkTraced(x, y);
+    int px, py;
+    next_.PixelOf(x, y, px, py);
+    tracedPixels_[std::size_t(py) * std::size_t(next_.Width()) + std::size_t(px)] = 1;
     if (!record_) return;
     StopRecordingRays();
     if (old_) {
@@ -397,7 +399,7 @@ void BlockTracer::EndSample(double x, double y, const float rgbft[5]) {
     StoredSample s;
     s.x = x;
     s.y = y;
-    s.group = std::uint32_t(next_.GroupOf(x, y));
+    s.group = std::uint32_t(next_.GroupOfPixel(px, py));
     s.orderSensitive = recorder_.OrderSensitive();
     std::copy(rgbft, rgbft + 5, s.colour);
     if (recorder_.Everything()) {
@@ -406,6 +408,7 @@ void BlockTracer::EndSample(double x, double y, const float rgbft[5]) {
     } else {
         s.firstByte = std::uint32_t(recorder_.FirstByte());
         s.segmentCount = std::uint32_t(recorder_.Count());
+        recorder_.Close();
         if (s.orderSensitive) recorder_.PackTies();
         for (std::size_t k = recorder_.First(); k < nextSegments_.size(); ++k)
             if (nextSegments_[k].unit != Segment::kNoUnit) nextUnitMask_ |= UnitMaskBit(nextSegments_[k].UnitId());
@@ -413,15 +416,6 @@ void BlockTracer::EndSample(double x, double y, const float rgbft[5]) {
     next_.samples.push_back(s);
     keptFromOld_.push_back(0);
     nextFirstSegment_.push_back(std::uint32_t(recorder_.First()));
-}
-
-void BlockTracer::MarkTraced(double x, double y) {
-    // The pixel a sample belongs to: the nearest pixel centre, kept inside the block (AA
-    // method 1 samples the row above and the column left of a block; those count for
-    // the block's edge pixels).
-    const int px = std::clamp(int(std::floor(x + 0.5)), next_.left, next_.right);
-    const int py = std::clamp(int(std::floor(y + 0.5)), next_.top, next_.bottom);
-    tracedPixels_[std::size_t(py - next_.top) * std::size_t(next_.Width()) + std::size_t(px - next_.left)] = 1;
 }
 
 void BlockTracer::SetPixel(int x, int y, const float rgbft[5]) {

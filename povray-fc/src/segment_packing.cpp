@@ -302,22 +302,6 @@ bool PackSegment(const double origin[3], const double direction[3], double tmax,
     return true;
 }
 
-bool PackSegmentInFull(const double origin[3], const double direction[3], double tmax, std::uint32_t unit,
-                       std::uint8_t fan, std::vector<std::uint8_t> &out, Segment &packed) {
-    if (!MakeSegment(origin, direction, tmax, packed)) return false;
-    packed.unit = unit;
-    std::uint8_t bytes[kLongestPacked];
-    std::uint8_t *at = bytes;
-    *at++ = fan;
-    *at++ = unit == Segment::kNoUnit ? kUnitNone : kUnitLong;
-    at = Put(at, packed.origin, 12);
-    at = Put(at, packed.direction, 12);
-    at = Put(at, &packed.length, 4);
-    if (unit != Segment::kNoUnit) at = Put(at, &unit, 4);
-    out.insert(out.end(), bytes, at);
-    return true;
-}
-
 bool UnpackSample(const std::uint8_t *bytes, std::uint32_t count, const FanApexes &apexes, Segment *segments,
                   std::uint8_t *fanOf, std::uint32_t *headers) {
     const std::uint8_t *p = bytes;

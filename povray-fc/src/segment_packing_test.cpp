@@ -107,25 +107,30 @@ struct PackedSamples {
     std::vector<std::uint32_t> firsts;
     std::vector<std::vector<Ray>> samples;
 
-    // Packs a sample's rays, each in full (PackSegmentInFull) or packed (PackSegment).
+    // Packs a sample's rays one by one (PackSegment), or writes them in full as MakeSegment
+    // gives them, all at once (AppendInFull).
     void Add(const std::vector<Ray> &rays, bool full) {
         firsts.push_back(std::uint32_t(bytes.size()));
         std::vector<Segment> sample;
+        std::vector<std::uint8_t> fans;
+        std::size_t fullBytes = 0;
         for (const Ray &r : rays) {
             Segment s;
-            const std::size_t before = bytes.size();
             if (full) {
-                ASSERT_TRUE(PackSegmentInFull(r.origin, r.direction, r.tmax, r.unit, r.fan, bytes, s));
-                Segment plain;
-                ASSERT_TRUE(MakeSegment(r.origin, r.direction, r.tmax, plain));
-                plain.unit = r.unit;
-                EXPECT_EQ(std::memcmp(&s, &plain, sizeof(Segment)), 0);
-                EXPECT_EQ(bytes.size() - before, r.unit == Segment::kNoUnit ? 30u : 34u);
+                ASSERT_TRUE(MakeSegment(r.origin, r.direction, r.tmax, s));
+                s.unit = r.unit;
+                fullBytes += r.unit == Segment::kNoUnit ? 30u : 34u;
             } else {
                 ASSERT_TRUE(PackSegment(r.origin, r.direction, r.tmax, r.unit, r.fan, sample.data(), sample.size(),
                                         apexes, bytes, s));
             }
             sample.push_back(s);
+            fans.push_back(r.fan);
+        }
+        if (full) {
+            const std::size_t before = bytes.size();
+            AppendInFull(sample.data(), fans.data(), sample.size(), bytes);
+            EXPECT_EQ(bytes.size() - before, fullBytes);
         }
         promised.insert(promised.end(), sample.begin(), sample.end());
         samples.push_back(rays);
@@ -216,12 +221,16 @@ TEST(SegmentPacking, SegmentsWrittenInFullReadBackAsMakeSegmentRoundsThemBesideP
     // A unit written in full takes any id.
     Segment s;
     const double o[3] = {1, 2, 3}, d[3] = {0, 0, 1};
+    ASSERT_TRUE(MakeSegment(o, d, 1.0, s));
+    s.unit = 7;
+    const std::uint8_t fan = FanApexes::kLoose;
     std::vector<std::uint8_t> one;
-    ASSERT_TRUE(PackSegmentInFull(o, d, 1.0, 7, FanApexes::kLoose, one, s));
+    AppendInFull(&s, &fan, 1, one);
+    ASSERT_EQ(one.size(), 34u);
     EXPECT_TRUE(RewritePackedUnit(one.data(), 123456 | Segment::kOpaqueBlocker));
-    const double bad[3] = {1, NAN, 3};
-    EXPECT_FALSE(PackSegmentInFull(bad, d, 1.0, 7, FanApexes::kLoose, one, s));
-    EXPECT_EQ(one.size(), 34u);
+    std::uint32_t unit;
+    NextPacked(one.data(), unit);
+    EXPECT_EQ(unit, 123456 | Segment::kOpaqueBlocker);
 }
 
 TEST(SegmentPacking, AStorePacksOnceItHoldsASixtyFourthOfItsBudgetOrTheBound) {

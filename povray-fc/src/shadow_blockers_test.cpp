@@ -6,6 +6,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstring>
 #include <random>
 
 #include "povrayfc/hull.h"
@@ -315,6 +316,55 @@ TEST(ShadowBlockers, AnyOtherBlockerKeepsItsPiecesAndWhereItStopped) {
     EXPECT_EQ(segments[1].unit, 12u);
     EXPECT_TRUE(segments[1].HullTested());
     EXPECT_NEAR(segments[1].length, 5.0, 1e-5);
+}
+
+// A recorder that writes in full keeps its segments unwritten until the sample closes,
+// drops a shadow test's moot pieces all the same, and then writes exactly the segments it
+// kept, as MakeSegment rounds the traced rays.
+TEST(ShadowBlockers, ARecorderWritingInFullWritesTheSegmentsItKeptWhenTheSampleCloses) {
+    std::vector<Segment> segments;
+    std::vector<std::uint8_t> fanOf;
+    std::vector<std::uint8_t> packed = {0xab};  // an earlier sample's byte stays
+    FanApexes apexes;
+    const std::uint32_t ids[3] = {10, 11, 12};
+    SampleRecorder recorder;
+    StartRecordingRays(recorder);
+    recorder.Begin(segments, fanOf, packed, apexes, ids, 3, false);
+    double origin[3] = {0.1, 0.2, 0.3};
+    const double up[3] = {0, 1, 0}, slant[3] = {0.3, -0.2, 0.9};
+    RecordRaySegment(origin, slant, 3.0, 0);
+    {
+        double depth = 50.0;
+        ShadowSegmentRecord shadow(origin, up, depth);
+        RecordRaySegment(origin, slant, 7.0, 1);  // traced within the test: moot once it is blocked
+        shadow.BlockedAt(5.0, 2, true);
+    }
+    {
+        double depth = 20.0;
+        ShadowSegmentRecord shadow(origin, slant, depth);  // reaches its light
+    }
+    StopRecordingRays();
+    ASSERT_EQ(recorder.Count(), 3u);
+    EXPECT_EQ(packed.size(), 1u) << "nothing is written before the sample closes";
+    recorder.Close();
+
+    Segment expected[3];
+    ASSERT_TRUE(MakeSegment(origin, slant, 3.0, expected[0]));
+    expected[0].unit = 10;
+    ASSERT_TRUE(MakeSegment(origin, up, 50.0, expected[1]));
+    expected[1].unit = 12 | Segment::kOpaqueBlocker;
+    ASSERT_TRUE(MakeSegment(origin, slant, 20.0, expected[2]));
+    expected[2].unit = Segment::kNoUnit;
+    EXPECT_EQ(packed.size(), 1u + 34 + 34 + 30);
+    EXPECT_EQ(packed[0], 0xab);
+    Segment read[3];
+    std::uint8_t fans[3];
+    ASSERT_TRUE(UnpackSample(packed.data() + 1, 3, apexes, read, fans));
+    for (int i = 0; i < 3; ++i) {
+        EXPECT_EQ(std::memcmp(&read[i], &expected[i], sizeof(Segment)), 0) << "segment " << i;
+        EXPECT_EQ(std::memcmp(&segments[i], &expected[i], sizeof(Segment)), 0) << "segment " << i;
+        EXPECT_EQ(fans[i], fanOf[i]);
+    }
 }
 
 }  // namespace

@@ -75,7 +75,6 @@ class BlockTracer {
   private:
     bool FindOld(double x, double y, std::uint32_t &index);
     void IndexOldSamples();
-    void MarkTraced(double x, double y);
     // The new record's packed segments in its samples' order, each copied once: a reused
     // sample's from old_, a traced one's from next_; fills tracedSegments_ and
     // tracedGroups_. Returns how many segments the record holds.

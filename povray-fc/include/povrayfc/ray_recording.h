@@ -45,8 +45,9 @@ class SampleRecorder {
     // Starts a sample whose segments are packed onto the end of `packed` (segment_packing.h)
     // and, as unpacking will give them, appended to `segments` (their fans to `fanOf`),
     // against the block's `apexes`. `unitIds[i]` is the id of the frame's unit i
-    // (unit_ids.h), for `unitCount` units. `tightly`: pack each segment (PackSegment), or
-    // write it in full (PackSegmentInFull).
+    // (unit_ids.h), for `unitCount` units. `tightly`: pack each segment as it is traced
+    // (PackSegment), or write the sample's segments in full when it ends (AppendInFull, in
+    // Close).
     void Begin(std::vector<Segment> &segments, std::vector<std::uint8_t> &fanOf, std::vector<std::uint8_t> &packed,
                FanApexes &apexes, const std::uint32_t *unitIds, std::size_t unitCount, bool tightly = true) {
         tightly_ = tightly;
@@ -102,6 +103,7 @@ class SampleRecorder {
         if (count >= Count()) return;
         segments_->resize(first_ + count);
         fanOf_->resize(first_ + count);
+        if (!tightly_) return;  // nothing is written before Close
         packed_->resize(byteStart_[count]);
         byteStart_.resize(count);
     }
@@ -129,6 +131,11 @@ class SampleRecorder {
     // Packs the order-sensitive sample's tied searches after its segments: the sample's
     // last bytes (BlockRecord::SampleBytes).
     void PackTies() { PackTiedSearches(ties_, tiesComplete_, *packed_); }
+    // Ends a sample that keeps its segments: those written in full go onto the bytes now,
+    // before its tied searches (PackTies).
+    void Close() {
+        if (!tightly_) AppendInFull(segments_->data() + first_, fanOf_->data() + first_, Count(), *packed_);
+    }
 
     bool Everything() const { return everything_; }
     bool OrderSensitive() const { return orderSensitive_; }
@@ -145,20 +152,25 @@ class SampleRecorder {
     std::size_t FirstByte() const { return firstByte_; }
 
   private:
-    // Packs the segment and appends it as unpacked; false when the ray cannot be stored,
-    // which makes the sample depend on everything.
+    // Appends the segment as unpacking will give it (and packs it, tightly); false when the
+    // ray cannot be stored, which makes the sample depend on everything.
     bool Store(const double origin[3], const double direction[3], double tmax, std::uint32_t unit,
                std::uint8_t fan) {
         Segment s;
-        const std::size_t at = packed_->size();
-        const bool stored = tightly_ ? PackSegment(origin, direction, tmax, unit, fan, segments_->data() + first_,
-                                                   Count(), *apexes_, *packed_, s)
-                                     : PackSegmentInFull(origin, direction, tmax, unit, fan, *packed_, s);
+        bool stored;
+        if (tightly_) {
+            const std::size_t at = packed_->size();
+            stored = PackSegment(origin, direction, tmax, unit, fan, segments_->data() + first_, Count(), *apexes_,
+                                 *packed_, s);
+            if (stored) byteStart_.push_back(std::uint32_t(at));
+        } else {
+            stored = MakeSegment(origin, direction, tmax, s);
+            s.unit = unit;
+        }
         if (!stored) {
             everything_ = true;
             return false;
         }
-        byteStart_.push_back(std::uint32_t(at));
         segments_->push_back(s);
         fanOf_->push_back(fan);
         return true;
@@ -178,7 +190,7 @@ class SampleRecorder {
     const std::uint32_t *unitIds_ = nullptr;
     std::size_t unitCount_ = 0;
     std::vector<std::uint8_t> *packed_ = nullptr;
-    std::vector<std::uint32_t> byteStart_;  // per segment of the sample: where it is packed
+    std::vector<std::uint32_t> byteStart_;  // per segment of the sample: where it is packed (tightly)
     std::size_t firstByte_ = 0;
     std::size_t first_ = 0;
     bool tightly_ = true;

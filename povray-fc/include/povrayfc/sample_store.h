@@ -114,12 +114,21 @@ struct BlockRecord {
     std::size_t GroupCount() const {
         return std::size_t(GroupsPerRow()) * std::size_t((Height() + kGroupPixels - 1) / kGroupPixels);
     }
-    // The group of a sample at (x, y): that of the nearest pixel centre inside the block
-    // (AA method 1 samples the row above and the column left of a block).
-    std::size_t GroupOf(double x, double y) const {
-        const int px = std::clamp(int(std::floor(x + 0.5)), left, right) - left;
-        const int py = std::clamp(int(std::floor(y + 0.5)), top, bottom) - top;
+    // The pixel a sample at (x, y) belongs to, from the block's top left: the nearest pixel
+    // centre inside the block (AA method 1 samples the row above and the column left of a
+    // block; those count for the block's edge pixels).
+    void PixelOf(double x, double y, int &px, int &py) const {
+        px = std::clamp(int(std::floor(x + 0.5)), left, right) - left;
+        py = std::clamp(int(std::floor(y + 0.5)), top, bottom) - top;
+    }
+    std::size_t GroupOfPixel(int px, int py) const {
         return std::size_t(py / kGroupPixels) * std::size_t(GroupsPerRow()) + std::size_t(px / kGroupPixels);
+    }
+    // The group of a sample at (x, y): that of its pixel.
+    std::size_t GroupOf(double x, double y) const {
+        int px, py;
+        PixelOf(x, y, px, py);
+        return GroupOfPixel(px, py);
     }
     bool Covers(int l, int t, int r, int b) const { return l == left && t == top && r == right && b == bottom; }
     const float *Pixel(int x, int y) const {
@@ -215,7 +224,7 @@ class SampleStore {
     std::size_t BudgetBytes() const { return budget_; }
 
     // While the store holds less than this, or a 64th of its budget if less, a block that
-    // starts recording writes its segments in full (PackSegmentInFull, under half of packing's
+    // starts recording writes its segments in full (AppendInFull, a third of packing's
     // instructions, three times its bytes); past it, it packs them (PackSegment). So
     // recording pays for packing only where memory counts, and the full form's extra bytes
     // stay under a 32nd of the budget (povray-fc/README.md, "Memory and its budget").

@@ -108,12 +108,33 @@ bool PackSegment(const double origin[3], const double direction[3], double tmax,
                  std::uint8_t fan, const Segment *earlier, std::size_t count, const FanApexes &apexes,
                  std::vector<std::uint8_t> &out, Segment &packed);
 
-// The same segment with every field written in full (34 bytes, 30 when it ended on
-// nothing; `packed` is what MakeSegment gives): under half of PackSegment's instructions, for
-// three times the bytes. The store takes this form while memory is plentiful
-// (SampleStore::PackTightly); both forms unpack alike and may share a record.
-bool PackSegmentInFull(const double origin[3], const double direction[3], double tmax, std::uint32_t unit,
-                       std::uint8_t fan, std::vector<std::uint8_t> &out, Segment &packed);
+// Segments written in full: fan, flags, origin, direction and length as MakeSegment gave
+// them, and the unit when there is one (34 bytes, 30 when it ended on nothing). A third of
+// PackSegment's instructions, for three times the bytes: the store takes this form while
+// memory is plentiful (SampleStore::PackTightly); both forms unpack alike and may share a
+// record. The recorder makes the Segments as rays are traced and writes a sample's in one
+// go when it ends, so a segment costs no growth of `out` of its own.
+constexpr std::size_t FullBytes(std::uint32_t unit) { return unit == Segment::kNoUnit ? 30 : 34; }
+inline void AppendInFull(const Segment *segments, const std::uint8_t *fans, std::size_t count,
+                         std::vector<std::uint8_t> &out) {
+    std::size_t bytes = 0;
+    for (std::size_t i = 0; i < count; ++i) bytes += FullBytes(segments[i].unit);
+    const std::size_t start = out.size();
+    out.resize(start + bytes);
+    std::uint8_t *at = out.data() + start;
+    static_assert(offsetof(Segment, direction) == offsetof(Segment, origin) + 12 &&
+                      offsetof(Segment, length) == offsetof(Segment, origin) + 24,
+                  "origin, direction and length are written as one run of 28 bytes");
+    for (std::size_t i = 0; i < count; ++i) {
+        const Segment &s = segments[i];
+        const bool unit = s.unit != Segment::kNoUnit;
+        at[0] = fans[i];
+        at[1] = unit ? packing::kUnitLong : packing::kUnitNone;
+        std::memcpy(at + 2, s.origin, 28);
+        if (unit) std::memcpy(at + 30, &s.unit, 4);
+        at += unit ? 34 : 30;
+    }
+}
 
 // Unpacks a sample's `count` segments packed at `bytes` into `segments` and their fans
 // into `fanOf` (a fan number without an apex in `apexes` becomes kLoose), and into
