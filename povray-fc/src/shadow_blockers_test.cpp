@@ -365,6 +365,14 @@ TEST(ShadowBlockers, ARecorderWritingInFullWritesTheSegmentsItKeptWhenTheSampleC
         EXPECT_EQ(std::memcmp(&segments[i], &expected[i], sizeof(Segment)), 0) << "segment " << i;
         EXPECT_EQ(fans[i], fanOf[i]);
     }
+
+    // A ray that cannot be stored makes the next sample depend on everything.
+    recorder.Begin(segments, fanOf, packed, apexes, ids, 3, false);
+    StartRecordingRays(recorder);
+    const double none[3] = {0, 0, 0};
+    RecordRaySegment(origin, none, 1.0, 0);
+    StopRecordingRays();
+    EXPECT_TRUE(recorder.Everything());
 }
 
 }  // namespace
