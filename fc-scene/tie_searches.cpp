@@ -11,6 +11,7 @@
 #include "povrayfc/scene_signature.h"
 #include "povrayfc/tie_watch.h"
 
+#include "ray_flags.h"
 #include "tie_searches.h"
 
 // this must be the last file included
@@ -46,45 +47,6 @@ std::uint8_t SearchKind(const RayObjectCondition& precondition, const RayObjectC
 	   typeid(postcondition) == typeid(pov::SmallToleranceRayObjectCondition))
 		return kShadowRaySearch;
 	return kUnknownSearch;
-}
-
-// The ray's flags a search or an object's intersection may read. Not the hollow flag: it
-// follows the ray's interiors, which no search reads (nor are they kept).
-enum : std::uint16_t
-{
-	kPrimary = 1, kReflection = 2, kRefraction = 4, kSubsurface = 8, kShadowTest = 16,
-	kPhoton = 32, kRadiosity = 64, kMonochromatic = 128, kPretrace = 256
-};
-
-std::uint16_t RayFlagBits(const Ray& ray)
-{
-	return std::uint16_t((ray.IsPrimaryRay() ? kPrimary : 0) | (ray.IsReflectionRay() ? kReflection : 0) |
-	                     (ray.IsRefractionRay() ? kRefraction : 0) | (ray.IsSubsurfaceRay() ? kSubsurface : 0) |
-	                     (ray.IsShadowTestRay() ? kShadowTest : 0) | (ray.IsPhotonRay() ? kPhoton : 0) |
-	                     (ray.IsRadiosityRay() ? kRadiosity : 0) | (ray.IsMonochromaticRay() ? kMonochromatic : 0) |
-	                     (ray.IsPretraceRay() ? kPretrace : 0));
-}
-
-// Gives `ray` the flags `bits` through Ray's own setters; false when they cannot make them.
-bool SetRayFlagBits(Ray& ray, std::uint16_t bits)
-{
-	const bool shadowTest = (bits & kShadowTest) != 0, photon = (bits & kPhoton) != 0;
-	const bool radiosity = (bits & kRadiosity) != 0, monochromatic = (bits & kMonochromatic) != 0;
-	const bool pretrace = (bits & kPretrace) != 0;
-	if((bits & (kReflection | kRefraction)) == (kReflection | kRefraction))
-	{
-		// A ray reflected inside a refracted one carries both (Ray::SetFlags from a parent).
-		const Ray parent(Ray::RefractionRay, shadowTest, photon, radiosity, monochromatic, pretrace);
-		ray.SetFlags(Ray::ReflectionRay, parent);
-	}
-	else
-	{
-		const Ray::RayType type = (bits & kPrimary) ? Ray::PrimaryRay : (bits & kReflection) ? Ray::ReflectionRay :
-		                          (bits & kRefraction) ? Ray::RefractionRay : (bits & kSubsurface) ? Ray::SubsurfaceRay :
-		                          Ray::OtherRay;
-		ray.SetFlags(type, shadowTest, photon, radiosity, monochromatic, pretrace);
-	}
-	return RayFlagBits(ray) == bits;
 }
 
 }  // namespace

@@ -32,8 +32,10 @@ std::uint32_t KeyHash(double x, double y) {
 // tested still missing it (ChangeIndex::UnionClearance; +infinity when no segment's bundle
 // reached a change, 0 when one passed through the box and missed the hulls themselves),
 // and `untested` the bundle classes (BlockHulls::ClassBit) of the segments not tested.
+// Segments `skip` marks (when given) are passed over.
 bool SampleIsDirty(const StoredSample &s, const BlockRecord &record, const ChangeIndex &changes,
-                   const BlockHulls &reach, double &clearance, std::uint32_t &untested) {
+                   const BlockHulls &reach, double &clearance, std::uint32_t &untested,
+                   const std::uint8_t *skip = nullptr) {
     clearance = std::numeric_limits<double>::infinity();
     untested = 0;
     thread_local UnpackScratch scratch;
@@ -46,7 +48,7 @@ bool SampleIsDirty(const StoredSample &s, const BlockRecord &record, const Chang
     }
     for (std::uint32_t i = 0; i < s.segmentCount; ++i) {
         // An opaque blocker's test holds whatever else appears on its way (EndsOnChangedUnit).
-        if (!segment[i].HullTested()) continue;
+        if (!segment[i].HullTested() || (skip && skip[i])) continue;
         const BlockHulls::Mask mask = reach.MaskOf(segment[i], fanOf[i]);
         if (mask == 0) {
             untested |= BlockHulls::ClassBit(segment[i], fanOf[i]);
@@ -82,7 +84,9 @@ bool AnyPackedUnit(const StoredSample &s, const BlockRecord &record, Matches mat
 // that unit keeps its shape and stays opaque, or while one of the frame's new opaque
 // balls crosses its way: shadow_blockers.h. The test then names that ball's unit, as if
 // traced anew: the changed unit's id may go to another unit from the next frame on.)
-bool EndsOnChangedUnit(const StoredSample &s, BlockRecord &record, const FramePlan &plan) {
+// Segments `skip` marks (when given) are passed over.
+bool EndsOnChangedUnit(const StoredSample &s, BlockRecord &record, const FramePlan &plan,
+                       const std::uint8_t *skip = nullptr) {
     const std::vector<std::uint8_t> &changed = *plan.changedUnits;
     // The units alone first: most samples ended on none that changed.
     if (!AnyPackedUnit(s, record, [&changed](std::uint32_t unit) {
@@ -96,7 +100,7 @@ bool EndsOnChangedUnit(const StoredSample &s, BlockRecord &record, const FramePl
     if (!record.Unpack(s, scratch.segments.data(), scratch.fans.data(), scratch.headers.data())) return true;
     for (std::uint32_t i = 0; i < s.segmentCount; ++i) {
         const Segment &segment = scratch.segments[i];
-        if (segment.unit == Segment::kNoUnit) continue;
+        if (segment.unit == Segment::kNoUnit || (skip && skip[i])) continue;
         const std::uint32_t unit = segment.UnitId();
         if (unit >= changed.size() || changed[unit] == FramePlan::kUnitKept) continue;
         // A part beside a part of its CSG that changed shape: an opaque blocker's test still
@@ -129,8 +133,10 @@ bool EndsOnChangedUnit(const StoredSample &s, BlockRecord &record, const FramePl
 // Whether one of the sample's shadow tests an opaque blocker answered may meet a changed
 // surface that lets light through (FramePlan::translucentChanges): the loop would go on past
 // it from a new origin, and whether it meets the blocker from there is decided in floating
-// point (ray_recording.h, ShadowSegmentRecord).
-bool BlockedTestMayMeet(const StoredSample &s, const BlockRecord &record, const ChangeIndex &translucent) {
+// point (ray_recording.h, ShadowSegmentRecord). Segments `skip` marks (when given) are
+// passed over.
+bool BlockedTestMayMeet(const StoredSample &s, const BlockRecord &record, const ChangeIndex &translucent,
+                        const std::uint8_t *skip = nullptr) {
     // The units alone first: most samples have no such test.
     if (!AnyPackedUnit(s, record, [](std::uint32_t unit) { return (unit & Segment::kOpaqueBlocker) != 0; }))
         return false;
@@ -139,9 +145,32 @@ bool BlockedTestMayMeet(const StoredSample &s, const BlockRecord &record, const 
     if (!record.Unpack(s, scratch.segments.data(), scratch.fans.data())) return true;
     for (std::uint32_t i = 0; i < s.segmentCount; ++i) {
         const Segment &segment = scratch.segments[i];
-        if (!segment.HullTested() && translucent.MayMeet(segment)) return true;
+        if (!segment.HullTested() && !(skip && skip[i]) && translucent.MayMeet(segment)) return true;
     }
     return false;
+}
+
+// Whether a sample found dirty is clean but for the pieces of the shadow tests it kept,
+// and those tests, run again through `replayer`, give the light the colours they gave
+// (shadow_replay.h). `units`, `blocked` and `reach` (nullptr: no change reaches its group)
+// say which of the tests above the frame asks for, as for any sample.
+bool KeptByShadowTests(const StoredSample &s, BlockRecord &record, const FramePlan &plan, bool units, bool blocked,
+                       const BlockHulls *reach, ShadowReplayer *replayer) {
+    if (!replayer || !s.shadowTests || s.segmentCount == StoredSample::kEverything) return false;
+    ShadowTest tests[kMaxShadowTests];
+    const std::size_t count = UnpackShadowTests(record.ShadowTestsOf(s), tests);
+    thread_local std::vector<std::uint8_t> skip;
+    skip.assign(s.segmentCount, 0);
+    for (std::size_t t = 0; t < count; ++t) {
+        if (std::size_t(tests[t].firstSegment) + tests[t].segmentCount > s.segmentCount) return false;
+        std::fill_n(skip.begin() + tests[t].firstSegment, tests[t].segmentCount, std::uint8_t(1));
+    }
+    if (units && EndsOnChangedUnit(s, record, plan, skip.data())) return false;
+    if (blocked && BlockedTestMayMeet(s, record, *plan.translucentChanges, skip.data())) return false;
+    double clearance;
+    std::uint32_t untested;
+    if (reach && SampleIsDirty(s, record, *plan.changes, *reach, clearance, untested, skip.data())) return false;
+    return ShadowTestsHold(record.ShadowTestsOf(s), replayer);
 }
 
 // A clearance (>= 0, rounded down to a float whose low mantissa bits are cleared) and the
@@ -207,6 +236,8 @@ bool BlockTracer::Begin(std::uint32_t serial, int left, int top, int right, int 
     const bool orderMatters = plan.orderChanged && old_->hasOrderSensitive;
     const bool unitsChanged = plan.changedUnits != nullptr && (old_->unitMask & plan.changedUnitMask) != 0;
     const bool translucentChanged = plan.translucentChanges != nullptr && !plan.translucentChanges->Empty();
+    // Samples kept by running their shadow tests again: any changed unit may be one they pass.
+    const bool staleAsked = old_->hasStaleShadowTests && plan.changedUnits != nullptr && plan.changedUnitMask != 0;
     const bool nothingChanged =
         (plan.changes == nullptr || plan.changes->Empty()) && !orderMatters && !unitsChanged;
     if (nothingChanged) {
@@ -238,7 +269,7 @@ bool BlockTracer::Begin(std::uint32_t serial, int left, int top, int right, int 
     bool anyDirty = false;
     // The cones hold no opaque blocker's test: a translucent change walks every group
     // that has one.
-    if (reach.Any() || old_->hasEverything || orderMatters || unitsChanged || translucentChanged) {
+    if (reach.Any() || old_->hasEverything || orderMatters || unitsChanged || translucentChanged || staleAsked) {
         // The block's cones reach a change (or a sample depends on everything): narrow
         // it down to the groups of samples whose own cones reach it.
         groupReach_.resize(old_->groupFans.size());
@@ -252,18 +283,19 @@ bool BlockTracer::Begin(std::uint32_t serial, int left, int top, int right, int 
         // Group by group, passing over those nothing of this frame concerns (group_index.h).
         const GroupIndex &index = old_->groupIndex;
         oldDirty_.assign(n, 0);
-        std::uint64_t tested = 0, cleared = 0, tiedReplayed = 0, tiedKept = 0;
+        std::uint64_t tested = 0, cleared = 0, tiedReplayed = 0, tiedKept = 0, shadowTried = 0, shadowKept = 0;
         for (std::size_t g = 0; g < groupReach_.size(); ++g) {
             const std::uint8_t flags = index.flags[g];
             const bool everything = (flags & GroupIndex::kEverything) != 0;
             const bool order = orderMatters && (flags & GroupIndex::kOrderSensitive);
             const bool units = unitsChanged && (index.unitMask[g] & plan.changedUnitMask) != 0;
             const bool blocked = translucentChanged && (flags & GroupIndex::kOpaqueBlockerTest);
-            if (!groupReaches_[g] && !everything && !order && !units && !blocked) continue;
+            const bool stale = staleAsked && (flags & GroupIndex::kStaleShadowTests);
+            if (!groupReaches_[g] && !everything && !order && !units && !blocked && !stale) continue;
             for (std::uint32_t k = index.Begin(g); k < index.End(g); ++k) {
                 const std::uint32_t i = index.samples[k];
                 StoredSample &s = old_->samples[i];
-                bool dirty = s.segmentCount == StoredSample::kEverything ||
+                bool dirty = s.segmentCount == StoredSample::kEverything || (stale && s.shadowStale) ||
                              (units && EndsOnChangedUnit(s, *old_, plan)) ||
                              (blocked && BlockedTestMayMeet(s, *old_, *plan.translucentChanges));
                 if (!dirty && groupReaches_[g]) {
@@ -284,6 +316,18 @@ bool BlockTracer::Begin(std::uint32_t serial, int left, int top, int right, int 
                         }
                     }
                 }
+                // Dirty through the shadow tests it kept alone, maybe: they are run again.
+                if (dirty && s.shadowTests && shadowReplayer_) {
+                    ++shadowTried;
+                    dirty = !KeptByShadowTests(s, *old_, plan, units, blocked,
+                                               groupReaches_[g] ? &groupReach_[g] : nullptr, shadowReplayer_);
+                    if (!dirty) {
+                        ++shadowKept;
+                        s.shadowStale = 1;
+                        old_->hasStaleShadowTests = true;
+                        old_->groupIndex.flags[g] |= GroupIndex::kStaleShadowTests;
+                    }
+                }
                 // Clean but for the order of the objects: its tied searches, run again, must
                 // find what they found (tie_replay.h).
                 if (!dirty && order && s.orderSensitive) {
@@ -299,6 +343,8 @@ bool BlockTracer::Begin(std::uint32_t serial, int left, int top, int right, int 
         plan.counters->clearedSamples += cleared;
         plan.counters->tiedSamplesReplayed += tiedReplayed;
         plan.counters->tiedSamplesKept += tiedKept;
+        plan.counters->shadowSamplesTried += shadowTried;
+        plan.counters->shadowSamplesKept += shadowKept;
     }
     if (!anyDirty) {
         plan.counters->reusedPixels += area;
@@ -410,6 +456,10 @@ void BlockTracer::EndSample(double x, double y, const float rgbft[5]) {
         s.segmentCount = std::uint32_t(recorder_.Count());
         recorder_.Close();
         if (s.orderSensitive) recorder_.PackTies();
+        if (recorder_.HasShadowTests()) {
+            s.shadowTests = 1;
+            recorder_.PackShadowTests();
+        }
         for (std::size_t k = recorder_.First(); k < nextSegments_.size(); ++k)
             if (nextSegments_[k].unit != Segment::kNoUnit) nextUnitMask_ |= UnitMaskBit(nextSegments_[k].UnitId());
     }
@@ -504,6 +554,7 @@ void BlockTracer::End() {
         for (const StoredSample &s : record->samples) {
             record->hasEverything |= s.segmentCount == StoredSample::kEverything;
             record->hasOrderSensitive |= s.orderSensitive;
+            record->hasStaleShadowTests |= s.shadowStale;
         }
     }
     old_ = nullptr;

@@ -241,6 +241,8 @@ void FrameCoherence::EndFrame(std::uint64_t raysTraced) {
         current_.samplesCleared = counters_.clearedSamples.load();
         current_.tiedSamplesReplayed = counters_.tiedSamplesReplayed.load();
         current_.tiedSamplesKept = counters_.tiedSamplesKept.load();
+        current_.shadowSamplesTried = counters_.shadowSamplesTried.load();
+        current_.shadowSamplesKept = counters_.shadowSamplesKept.load();
         // Blocks this frame did not render missed its changes.
         if (store_) store_->ForgetUntouched();
         current_.storeBytes = store_ ? store_->MemoryBytes() : 0;

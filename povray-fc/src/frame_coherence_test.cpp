@@ -17,10 +17,14 @@ namespace {
 
 const int kW = 16, kH = 8, kBlock = 4;
 const void *const kScene = reinterpret_cast<const void *>(0x1234);
+const double kUp[3] = {0, 1, 0};
 
 struct ToyBox {
     std::uint64_t id;
     Box box;
+    // Glass (above 0): camera rays pass it, and each of its surfaces a shadow test crosses
+    // scales the light by this; its id must then say its tint (the id is its appearance).
+    float tint = 0.0f;
 };
 
 struct ToyScene {
@@ -54,6 +58,7 @@ std::uint32_t UnitOf(const ToyScene &scene, const ToyBox *box) {
 // first of two boxes at the same depth wins, here in scene order.
 void NearestBox(const ToyScene &scene, const double o[3], const double d[3], double &best, const ToyBox *&hit) {
     for (const ToyBox &b : scene.boxes) {
+        if (b.tint > 0.0f) continue;
         const double t = Hit(b, o, d);
         if (t < 0) continue;
         NoteTieCandidate(t);
@@ -80,6 +85,60 @@ bool DescribeToySearch(const void *context, TiedSearch &search, std::uint32_t &u
     return true;
 }
 
+bool HasGlass(const ToyScene &scene) {
+    for (const ToyBox &b : scene.boxes)
+        if (b.tint > 0.0f) return true;
+    return false;
+}
+
+// Whether the toy keeps its glass shadow tests' inputs while recording, and whether it says
+// a shadow cache held an object as they started.
+bool toyKeepsShadowTests = true, toyCacheHeld = false;
+
+// The toy's shadow loop straight up from `origin`, as POV-Ray's: to the nearest surface
+// farther than a tolerance; glass scales `light` and the loop goes on from that surface, an
+// opaque box ends it dark. With `record`, tells it what it passed and what blocked it.
+void ToyShadowLoop(const ToyScene &scene, double origin[3], double &depth, float light[3], ShadowSegmentRecord *record) {
+    const double up[3] = {0, 1, 0};
+    for (;;) {
+        const ToyBox *nearest = nullptr;
+        double at = depth;
+        for (const ToyBox &b : scene.boxes) {
+            // Both surfaces along +y, with the box's x and z extent.
+            if (origin[0] < b.box.lo.x || origin[0] > b.box.hi.x || origin[2] < b.box.lo.z || origin[2] > b.box.hi.z) continue;
+            for (double t : {b.box.lo.y - origin[1], b.box.hi.y - origin[1]})
+                if (t > 1e-6 && t < at) at = t, nearest = &b;
+        }
+        if (!nearest) return;
+        const std::uint32_t unit = UnitOf(scene, nearest);
+        if (nearest->tint <= 0.0f) {
+            light[0] = light[1] = light[2] = 0.0f;
+            if (record) record->BlockedAt(at, unit, true);
+            return;
+        }
+        if (record) record->PassedAt(at, unit);
+        for (int i = 0; i < 3; ++i) light[i] *= nearest->tint;
+        origin[1] += at;
+        depth -= at;
+    }
+}
+
+// With glass in the scene, a sample's shadow test is POV-Ray's loop, recorded in pieces
+// (ShadowSegmentRecord), from just in front of the surface the camera ray hit.
+void TraceToyGlassShadow(const ToyScene &scene, const ToyBox *hit, double x, double y, double best, float rgbft[5]) {
+    double origin[3] = {x, y, -10 + best - 1e-3};
+    double depth = scene.lightY - y;
+    float light[3] = {1.0f, 1.0f, 1.0f};
+    {
+        ShadowSegmentRecord record(origin, kUp, depth);
+        if (toyKeepsShadowTests) record.Describe(0, 0, 1, light);
+        record.CacheHeld(toyCacheHeld);
+        ToyShadowLoop(scene, origin, depth, light, &record);
+    }
+    rgbft[0] = float(hit->id);
+    rgbft[1] = light[0];
+}
+
 // One camera sample at image position (x, y): a ray along +z, the box it hits, and a
 // shadow ray from there straight up to the light (to the nearest box in its way). Records
 // the rays like POV-Ray's hooks, each with the unit it ended on.
@@ -95,6 +154,10 @@ void TraceToy(const ToyScene &scene, double x, double y, float rgbft[5]) {
     RecordRaySegment(o, d, hit ? best : 2e10, UnitOf(scene, hit));
     std::memset(rgbft, 0, 5 * sizeof(float));
     if (!hit) return;
+    if (HasGlass(scene)) {
+        TraceToyGlassShadow(scene, hit, x, y, best, rgbft);
+        return;
+    }
     const double p[3] = {x, y, -10 + best}, up[3] = {0, 1, 0};
     const double toLight = scene.lightY - p[1];
     const ToyBox *blocker = nullptr;
@@ -145,7 +208,29 @@ class ToyReplayer : public TieReplayer {
     const ToyScene &scene_;
 };
 
-// Whether RenderFc gives its tracer a replayer (as the patched trace task does).
+// The toy's glass shadow test run again in the frame being rendered, as the patch layer runs
+// POV-Ray's. `lies`: it answers the colour kept, whatever the loop gives (the rule made
+// blind, for the tests that must catch it).
+class ToyShadowReplayer : public ShadowReplayer {
+  public:
+    explicit ToyShadowReplayer(const ToyScene &scene) : scene_(scene) {}
+    bool Replay(const ShadowTest &test, float colourOut[3]) override {
+        ++runs;
+        double origin[3] = {test.origin[0], test.origin[1], test.origin[2]};
+        double depth = test.depth;
+        std::copy(test.colourIn, test.colourIn + 3, colourOut);
+        ToyShadowLoop(scene_, origin, depth, colourOut, nullptr);
+        if (lies) std::copy(test.colourOut, test.colourOut + 3, colourOut);
+        return true;
+    }
+    static inline int runs = 0;
+    static inline bool lies = false;
+
+  private:
+    const ToyScene &scene_;
+};
+
+// Whether RenderFc gives its tracer replayers (as the patched trace task does).
 bool toyReplays = true;
 
 using Image = std::vector<float>;  // 5 floats a pixel
@@ -246,7 +331,11 @@ FcResult RenderFc(const ToyScene &scene, int frame, SceneEffects effects = {}, s
     r.image.assign(std::size_t(kW) * kH * 5, 0.0f);
     BlockTracer tracer(fc.Plan());
     ToyReplayer replayer(scene);
-    if (toyReplays) tracer.SetTieReplayer(&replayer);
+    ToyShadowReplayer shadowReplayer(scene);
+    if (toyReplays) {
+        tracer.SetTieReplayer(&replayer);
+        tracer.SetShadowReplayer(&shadowReplayer);
+    }
     std::uint32_t serial = 0;
     for (int by = 0; by < kH; by += kBlock)
         for (int bx = 0; bx < kW; bx += kBlock, ++serial) {
@@ -295,6 +384,9 @@ class FrameCoherenceRun : public ::testing::Test {
   protected:
     void SetUp() override {
         toyReplays = true;
+        toyKeepsShadowTests = true;
+        toyCacheHeld = false;
+        ToyShadowReplayer::lies = false;
         FrameCoherence &fc = FrameCoherence::Get();
         fc.BeginFrame(false, ToySetup(0), nullptr, {});
         fc.EndFrame(0);
@@ -1057,6 +1149,97 @@ TEST_F(FrameCoherenceRun, AStoreOverItsBudgetTracesTheBlocksLeftOutAndStaysExact
         }
     }
     EXPECT_EQ(budget, 20000u);
+}
+
+}  // namespace
+}  // namespace povrayfc
+
+namespace povrayfc {
+namespace {
+
+// The toy scene under a slab of glass at x = [glassX, glassX + 6], high above: the shadow
+// tests of the samples below it pass its two surfaces. `glassId` says its tint.
+ToyScene UnderGlass(double glassX, double moverX, std::uint64_t glassId = 20, float tint = 0.5f) {
+    ToyScene s = Frame(moverX);
+    s.boxes.push_back({glassId, Box{Vec3{glassX, 20, -20}, Vec3{glassX + 6, 21, 20}}, tint});
+    return s;
+}
+
+// Renders `scenes` in turn with fc, each checked against its full render; returns the last
+// frame's result.
+FcResult RenderAllExact(const std::vector<ToyScene> &scenes) {
+    FcResult r;
+    for (std::size_t f = 0; f < scenes.size(); ++f) {
+        r = RenderFc(scenes[f], int(f) + 1);
+        EXPECT_EQ(r.image, RenderFull(scenes[f])) << "frame " << f + 1;
+    }
+    return r;
+}
+
+TEST_F(FrameCoherenceRun, ShadowTestsThroughMovedGlassThatGiveTheSameColourAreKept) {
+    // Invariant: a sample whose only rays that meet a change are shadow tests through glass
+    // is kept when the tests, run again, give the light the same colour; its pixels are
+    // then exactly the full render's. Here the glass slides by one pixel: only the samples
+    // at its two edges change colour.
+    const std::vector<ToyScene> frames = {UnderGlass(2, 20), UnderGlass(3, 20)};
+    ToyShadowReplayer::runs = 0;
+    const FcResult kept = RenderAllExact(frames);
+    const FrameStats stats = FrameCoherence::Get().LastStats();
+    EXPECT_GT(stats.shadowSamplesKept, 0u);
+    EXPECT_LE(stats.shadowSamplesKept, stats.shadowSamplesTried);
+    EXPECT_GT(ToyShadowReplayer::runs, 0);
+    // Without replayers every sample under the glass is traced again.
+    SetUp();
+    toyReplays = false;
+    const FcResult traced = RenderAllExact(frames);
+    EXPECT_EQ(traced.image, kept.image);
+    EXPECT_EQ(FrameCoherence::Get().LastStats().shadowSamplesKept, 0u);
+    EXPECT_GE(traced.tracedSamples, kept.tracedSamples + stats.shadowSamplesKept);
+}
+
+TEST_F(FrameCoherenceRun, ShadowTestsAreTracedAgainWhenTheRunGivesAnotherColour) {
+    // The glass stays and takes another tint: every test gives another colour, so every
+    // sample under it is traced (the full render's pixels say so: a replayer that answered
+    // the colour kept would leave the old tint).
+    const std::vector<ToyScene> frames = {UnderGlass(2, 20, 20, 0.5f), UnderGlass(2, 20, 21, 0.75f)};
+    RenderAllExact(frames);
+    EXPECT_EQ(FrameCoherence::Get().LastStats().shadowSamplesKept, 0u);
+    EXPECT_GT(FrameCoherence::Get().LastStats().shadowSamplesTried, 0u);
+    SetUp();
+    ToyShadowReplayer::lies = true;
+    RenderFc(frames[0], 1);
+    const FcResult blind = RenderFc(frames[1], 2);
+    EXPECT_NE(blind.image, RenderFull(frames[1]));
+}
+
+TEST_F(FrameCoherenceRun, ASampleWhoseOtherRaysMeetAChangeIsTracedWhateverItsShadowTestsGive) {
+    // The glass moves and so does the box the camera sees under it: the samples whose
+    // camera ray the box left or came to change, though their shadow tests, run again from
+    // where they started before, give the same colour: the rest of the sample decides.
+    RenderAllExact({UnderGlass(0, 1), UnderGlass(1, 2.5), UnderGlass(2, 4)});
+    EXPECT_GT(FrameCoherence::Get().LastStats().shadowSamplesKept, 0u);
+}
+
+TEST_F(FrameCoherenceRun, ASampleKeptByItsShadowTestsRunsThemAgainWhenTheGlassMovesAway) {
+    // Kept in the second frame, the samples under the glass still hold the pieces of the
+    // first, which name the glass's first id: when the glass then leaves, every one of them
+    // runs its tests again and is traced.
+    RenderAllExact({UnderGlass(2, 20), UnderGlass(3, 20), UnderGlass(40, 20)});
+    const FrameStats stats = FrameCoherence::Get().LastStats();
+    EXPECT_GT(stats.shadowSamplesTried, 0u);
+    EXPECT_EQ(stats.shadowSamplesKept, 0u);
+}
+
+TEST_F(FrameCoherenceRun, AShadowTestThatStartedWithACachedBlockerIsNotKept) {
+    // A test that found the shadow caches holding an object is not kept to be run again
+    // (the cache decided what it met first): its sample is traced like one without them.
+    toyCacheHeld = true;
+    RenderAllExact({UnderGlass(2, 20), UnderGlass(3, 20)});
+    EXPECT_EQ(FrameCoherence::Get().LastStats().shadowSamplesTried, 0u);
+    SetUp();
+    toyKeepsShadowTests = false;
+    RenderAllExact({UnderGlass(2, 20), UnderGlass(3, 20)});
+    EXPECT_EQ(FrameCoherence::Get().LastStats().shadowSamplesTried, 0u);
 }
 
 }  // namespace

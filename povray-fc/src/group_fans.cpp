@@ -6,11 +6,13 @@ namespace povrayfc {
 
 namespace {
 
-// The flags a sample gives its group by itself (kEverything, kOrderSensitive).
+// The flags a sample gives its group by itself (kEverything, kOrderSensitive,
+// kStaleShadowTests).
 void AddSampleFlags(GroupIndex &index, const StoredSample &s) {
     std::uint8_t &flags = index.flags[s.group];
     if (s.orderSensitive) flags |= GroupIndex::kOrderSensitive;
     if (s.segmentCount == StoredSample::kEverything) flags |= GroupIndex::kEverything;
+    if (s.shadowStale) flags |= GroupIndex::kStaleShadowTests;
 }
 
 // What a segment that ended on `unit` (a Segment::unit value) gives its sample's group.

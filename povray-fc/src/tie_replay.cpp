@@ -5,24 +5,9 @@
 
 #include "povrayfc/ray_recording.h"
 #include "povrayfc/segment.h"
+#include "byte_io.h"
 
 namespace povrayfc {
-
-namespace {
-
-template <class T>
-void Put(std::uint8_t *&out, const T &value) {
-    std::memcpy(out, &value, sizeof value);
-    out += sizeof value;
-}
-
-template <class T>
-void Get(const std::uint8_t *&in, T &value) {
-    std::memcpy(&value, in, sizeof value);
-    in += sizeof value;
-}
-
-}  // namespace
 
 void PackTiedSearches(const std::vector<TiedSearch> &searches, bool complete, std::vector<std::uint8_t> &packed) {
     if (!complete || searches.size() > kMaxTiedSearches) {

@@ -23,6 +23,7 @@
 #include "povrayfc/frame_plan.h"
 #include "povrayfc/ray_recording.h"
 #include "povrayfc/sample_store.h"
+#include "povrayfc/shadow_replay.h"
 #include "povrayfc/tie_replay.h"
 
 namespace povrayfc {
@@ -34,6 +35,12 @@ class BlockTracer {
     // Runs tied searches again for this thread (tie_replay.h); without one, an
     // order-sensitive sample is traced again whenever the order of the objects changed.
     void SetTieReplayer(TieReplayer *replayer) { tieReplayer_ = replayer; }
+    // Runs shadow tests again for this thread (shadow_replay.h); with one, the samples it
+    // records keep their shadow tests that passed something letting light through.
+    void SetShadowReplayer(ShadowReplayer *replayer) {
+        shadowReplayer_ = replayer;
+        recorder_.KeepShadowTests(replayer != nullptr);
+    }
 
     // Starts block `serial` (POV-Ray's block number) covering [left..right]x[top..bottom].
     // Returns true when the stored block can be sent as it is: then StoredPixel() gives
@@ -93,6 +100,7 @@ class BlockTracer {
 
     const FramePlan *plan_;
     TieReplayer *tieReplayer_ = nullptr;
+    ShadowReplayer *shadowReplayer_ = nullptr;
     bool active_ = false;   // this block is under fc (mode != kIdle)
     bool endedActive_ = false;  // End() ended a block under fc (SendOnlyChanged)
     bool record_ = false;   // mode kRecord: samples and segments are kept

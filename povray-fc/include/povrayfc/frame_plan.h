@@ -29,11 +29,15 @@ struct FrameCounters {
     // Order-sensitive samples clean but for the order of the objects (their tied searches
     // are run again where they could be kept: tie_replay.h), and those kept.
     std::atomic<std::uint64_t> tiedSamplesReplayed{0}, tiedSamplesKept{0};
+    // Samples dirty with shadow tests kept (shadow_replay.h), and those of them kept when the
+    // rest of the sample was clean and the tests, run again, gave the same colours.
+    std::atomic<std::uint64_t> shadowSamplesTried{0}, shadowSamplesKept{0};
 
     void Reset() {
         tracedPixels = reusedPixels = tracedSamples = reusedSamples = reusedBlocks = replayedBlocks = 0;
         testedSamples = clearedSamples = overBudgetBlocks = unrecordedSamples = 0;
         tiedSamplesReplayed = tiedSamplesKept = 0;
+        shadowSamplesTried = shadowSamplesKept = 0;
     }
 };
 

@@ -24,6 +24,7 @@ struct GroupIndex {
     static constexpr std::uint8_t kEverything = 1;       // StoredSample::kEverything segments
     static constexpr std::uint8_t kOrderSensitive = 2;   // StoredSample::orderSensitive
     static constexpr std::uint8_t kOpaqueBlockerTest = 4;  // a segment with Segment::kOpaqueBlocker
+    static constexpr std::uint8_t kStaleShadowTests = 8;   // StoredSample::shadowStale
 
     std::vector<std::uint32_t> start;     // per group, its first entry of `samples`; and the end
     std::vector<std::uint32_t> samples;   // indices into BlockRecord::samples, group by group

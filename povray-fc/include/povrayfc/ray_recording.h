@@ -20,6 +20,7 @@
 #include "povrayfc/scene_signature.h"
 #include "povrayfc/segment.h"
 #include "povrayfc/segment_packing.h"
+#include "povrayfc/shadow_replay.h"
 #include "povrayfc/tie_replay.h"
 
 namespace povrayfc {
@@ -65,7 +66,19 @@ class SampleRecorder {
         orderSensitive_ = false;
         ties_.clear();
         tiesComplete_ = true;
+        shadowTests_.clear();
     }
+    // Whether the samples keep their shadow tests that passed something letting light
+    // through, to run them again (shadow_replay.h): only where they can be run again.
+    void KeepShadowTests(bool keep) { keepShadowTests_ = keep; }
+    bool KeepsShadowTests() const { return keepShadowTests_; }
+    // One such test of the sample (the first kMaxShadowTests are kept).
+    void AddShadowTest(const ShadowTest &test) {
+        if (shadowTests_.size() < kMaxShadowTests) shadowTests_.push_back(test);
+    }
+    bool HasShadowTests() const { return !shadowTests_.empty(); }
+    // Packs them after the sample's segments and tied searches: its last bytes.
+    void PackShadowTests() { povrayfc::PackShadowTests(shadowTests_, *packed_); }
     // A ray that ended on the frame's unit `unit` (the index the parser wrote into what it
     // hit, or kUnitNothing).
     void Add(const double origin[3], const double direction[3], double tmax, std::uint32_t unit) {
@@ -199,6 +212,8 @@ class SampleRecorder {
     bool orderSensitive_ = false;
     std::vector<TiedSearch> ties_;  // the sample's tied searches, in the order they ran
     bool tiesComplete_ = true;      // every tied search of the sample is in ties_
+    bool keepShadowTests_ = false;
+    std::vector<ShadowTest> shadowTests_;  // the sample's, in the order they ran
 };
 
 namespace detail {
@@ -227,6 +242,9 @@ inline void RecordRaySegment(const double origin[3], const double direction[3], 
 // blocker is decided in floating point, near an edge either way. For the same reason the
 // pieces up to the transparent objects the test passed stay (each ends on its object); a
 // test that passed none keeps its one segment alone.
+//
+// A test that passed something and started with empty shadow caches is also kept whole, to
+// be run again (Describe, CacheHeld; shadow_replay.h).
 // Costs one thread-local test when the thread is not recording.
 class ShadowSegmentRecord {
   public:
@@ -244,14 +262,35 @@ class ShadowSegmentRecord {
         if (!recorder_) return;
         if (!blocked_ || !opaque_ || blocker_ == kUnitNothing) {
             recorder_->AddAimed(origin_, direction_, blocked_ ? blockedAt_ : depth_, aim_, blocker_);
-            return;
+        } else {
+            if (!passed_ && recorder_->Count() >= before_) recorder_->KeepFirst(before_);
+            recorder_->AddAimed(origin_, direction_, depth_ - projected_, aim_, blocker_, true);
         }
-        if (!passed_ && recorder_->Count() >= before_) recorder_->KeepFirst(before_);
-        recorder_->AddAimed(origin_, direction_, depth_ - projected_, aim_, blocker_, true);
+        if (passed_ && colour_ && !cacheHeld_) KeepTest();
     }
     ShadowSegmentRecord(const ShadowSegmentRecord &) = delete;
     ShadowSegmentRecord &operator=(const ShadowSegmentRecord &) = delete;
 
+    // Whether Describe is wanted: the sample keeps its shadow tests (shadow_replay.h).
+    bool KeepsTests() const { return recorder_ && recorder_->KeepsShadowTests(); }
+    // What the test takes besides its ray, read before it runs: the light's index, the ray's
+    // flags, the trace level, and `colour`, the light's colour the test filters in place
+    // (read again when it returns). Without it the test is not kept.
+    void Describe(std::uint16_t light, std::uint16_t rayFlags, std::uint8_t traceLevel, const float *colour) {
+        if (!KeepsTests()) return;
+        colour_ = colour;
+        test_.light = light;
+        test_.rayFlags = rayFlags;
+        test_.traceLevel = traceLevel;
+        for (int i = 0; i < 3; ++i) {
+            test_.origin[i] = origin_[i];
+            test_.direction[i] = direction_[i];
+            test_.colourIn[i] = colour[i];
+        }
+        test_.depth = depth_;
+    }
+    // The shadow caches held an object for the test to try first: it is not kept.
+    void CacheHeld(bool held) { cacheHeld_ = held; }
     // A light with projected_through: the test ignores surfaces within `depth` of the light.
     void ProjectedDepth(double depth) { projected_ = depth; }
     // The test passed a transparent object (the frame's unit `unit`) at `distance` from the
@@ -284,6 +323,18 @@ class ShadowSegmentRecord {
     std::uint32_t blocker_ = kUnitNothing;
     bool opaque_ = false;
     bool passed_ = false;  // PassedAt was called: the loop's origin moved
+    const float *colour_ = nullptr;  // Describe was called: the light's colour
+    bool cacheHeld_ = false;
+    ShadowTest test_;
+
+    void KeepTest() {
+        const std::size_t count = recorder_->Count();
+        if (count < before_ || count - before_ > 0xffff) return;
+        test_.firstSegment = std::uint32_t(before_);
+        test_.segmentCount = std::uint16_t(count - before_);
+        for (int i = 0; i < 3; ++i) test_.colourOut[i] = colour_[i];
+        recorder_->AddShadowTest(test_);
+    }
 };
 
 // Routes this thread's RecordRaySegment() calls into `recorder` until StopRecordingRays().

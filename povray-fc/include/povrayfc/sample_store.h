@@ -30,6 +30,7 @@
 #include "povrayfc/segment.h"
 #include "povrayfc/segment_fans.h"
 #include "povrayfc/segment_packing.h"
+#include "povrayfc/shadow_replay.h"
 #include "povrayfc/tie_replay.h"
 
 namespace povrayfc {
@@ -48,11 +49,18 @@ struct StoredSample {
     // BlockRecord::GroupOf(x, y), worked out once when the sample is recorded: the test of
     // a block's samples against a frame's changes reads it for every sample. It fills what
     // was padding.
-    std::uint32_t group : 31;
+    std::uint32_t group : 29;
     // A search for one of its rays' nearest intersections ended in a tie the order of the
     // scene's objects decided (tie_watch.h): whenever that order may differ, its tied
     // searches, packed after its segments, are run again (tie_replay.h).
     std::uint32_t orderSensitive : 1;
+    // It kept shadow tests that passed something letting light through, packed last: where
+    // only their pieces meet a change, they are run again (shadow_replay.h).
+    std::uint32_t shadowTests : 1;
+    // It was kept by running them again: their pieces may name units that changed since
+    // (their ids given to others) and miss those the tests pass now, so every frame in
+    // which a unit changes runs them again (shadow_replay.h).
+    std::uint32_t shadowStale : 1;
     // Found clean in the frame stamped clearStamp (0: never, or traced since): its segments
     // of the bundle classes in the low BlockHulls::kClassBits bits of `clearance` (every
     // one of its segments in such a class was tested) missed that frame's changes by the
@@ -62,7 +70,7 @@ struct StoredSample {
     std::uint32_t clearStamp = 0;
     std::uint32_t clearance = 0;
 
-    StoredSample() : group(0), orderSensitive(0) {}
+    StoredSample() : group(0), orderSensitive(0), shadowTests(0), shadowStale(0) {}
 };
 static_assert(sizeof(StoredSample) == 56, "StoredSample grew: the store's size per pixel counts it");
 
@@ -102,6 +110,7 @@ struct BlockRecord {
     }
     bool hasEverything = false; // a sample depends on everything (any change dirties it)
     bool hasOrderSensitive = false;  // a sample is StoredSample::orderSensitive
+    bool hasStaleShadowTests = false;  // a sample is StoredSample::shadowStale (or was)
     // UnitMaskBit of every unit a segment of the record ended on (a superset once samples
     // are traced again in place: bits are never taken out).
     std::uint64_t unitMask = 0;
@@ -134,18 +143,23 @@ struct BlockRecord {
     const float *Pixel(int x, int y) const {
         return &pixels[(std::size_t(y - top) * std::size_t(Width()) + std::size_t(x - left)) * 5];
     }
-    // The bytes of `packed` sample `s` holds from its firstByte: its segments and, when it
-    // is order-sensitive, its tied searches after them (tie_replay.h).
+    // The bytes of `packed` sample `s` holds from its firstByte: its segments, then when it
+    // is order-sensitive its tied searches (tie_replay.h), then when it kept any its shadow
+    // tests (shadow_replay.h).
     std::size_t SampleBytes(const StoredSample &s) const {
         if (s.segmentCount == StoredSample::kEverything) return 0;
-        const std::uint8_t *first = packed.data() + s.firstByte;
-        const std::size_t segments = PackedSize(first, s.segmentCount);
-        return s.orderSensitive ? segments + TiedSearchesBytes(first + segments) : segments;
+        const std::uint8_t *tests = ShadowTestsOf(s);
+        return std::size_t(tests - (packed.data() + s.firstByte)) + (s.shadowTests ? ShadowTestsBytes(tests) : 0);
     }
     // An order-sensitive sample's tied searches (tie_replay.h).
     const std::uint8_t *TiedSearchesOf(const StoredSample &s) const {
         const std::uint8_t *first = packed.data() + s.firstByte;
         return first + PackedSize(first, s.segmentCount);
+    }
+    // Where a sample's shadow tests are (shadow_replay.h): after its tied searches.
+    const std::uint8_t *ShadowTestsOf(const StoredSample &s) const {
+        const std::uint8_t *ties = TiedSearchesOf(s);
+        return s.orderSensitive ? ties + TiedSearchesBytes(ties) : ties;
     }
     // Unpacks sample `s`'s segments into `segments` and their bundles into `fanOf` (room
     // for s.segmentCount each: UnpackScratch), and, when given, each one's offset in
