@@ -48,15 +48,14 @@ bool ShadowTestsReplayable(const pov::SceneData& scene)
 }
 
 void DescribeKeptShadowTest(ShadowSegmentRecord& record, const pov::LightSource& light, const pov::Ray& ray,
-                            pov::RGBColour& colour, const pov::Trace::TraceTicket& ticket,
-                            const pov::SceneData& scene)
+                            const pov::Trace::TraceTicket& ticket, const pov::SceneData& scene)
 {
 	// TraceShadowReplayer finds the light among the scene's lights by its index and makes
 	// its ticket from the scene's settings.
 	if(light.lightGroupLight || light.index > 0xffff || ticket.traceLevel > 0xff ||
 	   ticket.adcBailout != scene.parsedAdcBailout || ticket.maxAllowedTraceLevel != scene.parsedMaxTraceLevel)
 		return;
-	record.Describe(std::uint16_t(light.index), RayFlagBits(ray), std::uint8_t(ticket.traceLevel), &colour.red());
+	record.Describe(std::uint16_t(light.index), RayFlagBits(ray), std::uint8_t(ticket.traceLevel));
 }
 
 bool TraceShadowReplayer::Replay(const ShadowTest& test, float colourOut[3])

@@ -3,7 +3,8 @@
 // A shadow test that passed something letting light through is kept with its sample when
 // the scene's shadow tests can be run again (ShadowTestsReplayable): with its ray, the
 // light's index, the ray's flags, the trace level, and the light's colour before and after
-// it (DescribeShadowTest, from Trace::TracePointLightShadowRay). In a frame where only such
+// it (ShadowSegmentRecord::LightColour and DescribeShadowTest, from
+// Trace::TracePointLightShadowRay). In a frame where only such
 // tests of a sample meet a change, the engine asks TraceShadowReplayer to run them again
 // through the same Trace::TracePointLightShadowRay (povray-fc's shadow_replay.h says why
 // that is exact).
@@ -33,17 +34,16 @@ namespace scene
 // and no isosurface (its root finder keeps the last root-free stretch from ray to ray).
 bool ShadowTestsReplayable(const pov::SceneData& scene);
 
-// Tells `record` what the test takes besides its ray, when it keeps tests (a light of a
-// light group, a ticket other than the scene's, or a trace level past 255 is not kept).
+// As a test ends: tells `record` what the test took besides its ray and the light's colour,
+// when it wants to know (it passed something, and its sample keeps such tests). A light of
+// a light group, a ticket other than the scene's, or a trace level past 255 is not kept.
 void DescribeKeptShadowTest(ShadowSegmentRecord& record, const pov::LightSource& light, const pov::Ray& ray,
-                            pov::RGBColour& colour, const pov::Trace::TraceTicket& ticket,
-                            const pov::SceneData& scene);
+                            const pov::Trace::TraceTicket& ticket, const pov::SceneData& scene);
 inline void DescribeShadowTest(ShadowSegmentRecord& record, const pov::LightSource& light, const pov::Ray& ray,
-                               pov::RGBColour& colour, const pov::Trace::TraceTicket& ticket,
-                               const pov::SceneData& scene)
+                               const pov::Trace::TraceTicket& ticket, const pov::SceneData& scene)
 {
-	if(record.KeepsTests())
-		DescribeKeptShadowTest(record, light, ray, colour, ticket, scene);
+	if(record.Wanted())
+		DescribeKeptShadowTest(record, light, ray, ticket, scene);
 }
 
 // Runs a kept shadow test again through `trace` (the render thread's own tracer, in the

@@ -27,15 +27,26 @@ std::uint32_t KeyHash(double x, double y) {
     return std::uint32_t(h >> 32);
 }
 
+// Which of a sample's segments a test passes over: none, or those a mask marks (the pieces
+// of the shadow tests a sample kept, when they are run again instead). A type each, so that
+// the test every stored sample takes has no mask to look at.
+struct SkipNone {
+    bool operator()(std::uint32_t) const { return false; }
+};
+struct SkipMarked {
+    const std::uint8_t *marked;
+    bool operator()(std::uint32_t i) const { return marked[i] != 0; }
+};
+
 // Whether one of the sample's segments may meet a change. When none may, `clearance` says
 // how much farther out the box around the changes could have reached with every segment
 // tested still missing it (ChangeIndex::UnionClearance; +infinity when no segment's bundle
 // reached a change, 0 when one passed through the box and missed the hulls themselves),
 // and `untested` the bundle classes (BlockHulls::ClassBit) of the segments not tested.
-// Segments `skip` marks (when given) are passed over.
+// Segments `skip` picks are passed over.
+template <class Skip = SkipNone>
 bool SampleIsDirty(const StoredSample &s, const BlockRecord &record, const ChangeIndex &changes,
-                   const BlockHulls &reach, double &clearance, std::uint32_t &untested,
-                   const std::uint8_t *skip = nullptr) {
+                   const BlockHulls &reach, double &clearance, std::uint32_t &untested, Skip skip = Skip()) {
     clearance = std::numeric_limits<double>::infinity();
     untested = 0;
     thread_local UnpackScratch scratch;
@@ -48,7 +59,7 @@ bool SampleIsDirty(const StoredSample &s, const BlockRecord &record, const Chang
     }
     for (std::uint32_t i = 0; i < s.segmentCount; ++i) {
         // An opaque blocker's test holds whatever else appears on its way (EndsOnChangedUnit).
-        if (!segment[i].HullTested() || (skip && skip[i])) continue;
+        if (!segment[i].HullTested() || skip(i)) continue;
         const BlockHulls::Mask mask = reach.MaskOf(segment[i], fanOf[i]);
         if (mask == 0) {
             untested |= BlockHulls::ClassBit(segment[i], fanOf[i]);
@@ -84,9 +95,9 @@ bool AnyPackedUnit(const StoredSample &s, const BlockRecord &record, Matches mat
 // that unit keeps its shape and stays opaque, or while one of the frame's new opaque
 // balls crosses its way: shadow_blockers.h. The test then names that ball's unit, as if
 // traced anew: the changed unit's id may go to another unit from the next frame on.)
-// Segments `skip` marks (when given) are passed over.
-bool EndsOnChangedUnit(const StoredSample &s, BlockRecord &record, const FramePlan &plan,
-                       const std::uint8_t *skip = nullptr) {
+// Segments `skip` picks are passed over.
+template <class Skip = SkipNone>
+bool EndsOnChangedUnit(const StoredSample &s, BlockRecord &record, const FramePlan &plan, Skip skip = Skip()) {
     const std::vector<std::uint8_t> &changed = *plan.changedUnits;
     // The units alone first: most samples ended on none that changed.
     if (!AnyPackedUnit(s, record, [&changed](std::uint32_t unit) {
@@ -100,7 +111,7 @@ bool EndsOnChangedUnit(const StoredSample &s, BlockRecord &record, const FramePl
     if (!record.Unpack(s, scratch.segments.data(), scratch.fans.data(), scratch.headers.data())) return true;
     for (std::uint32_t i = 0; i < s.segmentCount; ++i) {
         const Segment &segment = scratch.segments[i];
-        if (segment.unit == Segment::kNoUnit || (skip && skip[i])) continue;
+        if (segment.unit == Segment::kNoUnit || skip(i)) continue;
         const std::uint32_t unit = segment.UnitId();
         if (unit >= changed.size() || changed[unit] == FramePlan::kUnitKept) continue;
         // A part beside a part of its CSG that changed shape: an opaque blocker's test still
@@ -133,10 +144,10 @@ bool EndsOnChangedUnit(const StoredSample &s, BlockRecord &record, const FramePl
 // Whether one of the sample's shadow tests an opaque blocker answered may meet a changed
 // surface that lets light through (FramePlan::translucentChanges): the loop would go on past
 // it from a new origin, and whether it meets the blocker from there is decided in floating
-// point (ray_recording.h, ShadowSegmentRecord). Segments `skip` marks (when given) are
-// passed over.
+// point (ray_recording.h, ShadowSegmentRecord). Segments `skip` picks are passed over.
+template <class Skip = SkipNone>
 bool BlockedTestMayMeet(const StoredSample &s, const BlockRecord &record, const ChangeIndex &translucent,
-                        const std::uint8_t *skip = nullptr) {
+                        Skip skip = Skip()) {
     // The units alone first: most samples have no such test.
     if (!AnyPackedUnit(s, record, [](std::uint32_t unit) { return (unit & Segment::kOpaqueBlocker) != 0; }))
         return false;
@@ -145,7 +156,7 @@ bool BlockedTestMayMeet(const StoredSample &s, const BlockRecord &record, const 
     if (!record.Unpack(s, scratch.segments.data(), scratch.fans.data())) return true;
     for (std::uint32_t i = 0; i < s.segmentCount; ++i) {
         const Segment &segment = scratch.segments[i];
-        if (!segment.HullTested() && !(skip && skip[i]) && translucent.MayMeet(segment)) return true;
+        if (!segment.HullTested() && !skip(i) && translucent.MayMeet(segment)) return true;
     }
     return false;
 }
@@ -165,11 +176,12 @@ bool KeptByShadowTests(const StoredSample &s, BlockRecord &record, const FramePl
         if (std::size_t(tests[t].firstSegment) + tests[t].segmentCount > s.segmentCount) return false;
         std::fill_n(skip.begin() + tests[t].firstSegment, tests[t].segmentCount, std::uint8_t(1));
     }
-    if (units && EndsOnChangedUnit(s, record, plan, skip.data())) return false;
-    if (blocked && BlockedTestMayMeet(s, record, *plan.translucentChanges, skip.data())) return false;
+    const SkipMarked pieces{skip.data()};
+    if (units && EndsOnChangedUnit(s, record, plan, pieces)) return false;
+    if (blocked && BlockedTestMayMeet(s, record, *plan.translucentChanges, pieces)) return false;
     double clearance;
     std::uint32_t untested;
-    if (reach && SampleIsDirty(s, record, *plan.changes, *reach, clearance, untested, skip.data())) return false;
+    if (reach && SampleIsDirty(s, record, *plan.changes, *reach, clearance, untested, pieces)) return false;
     return ShadowTestsHold(record.ShadowTestsOf(s), replayer);
 }
 

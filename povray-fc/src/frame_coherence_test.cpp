@@ -131,9 +131,10 @@ void TraceToyGlassShadow(const ToyScene &scene, const ToyBox *hit, double x, dou
     float light[3] = {1.0f, 1.0f, 1.0f};
     {
         ShadowSegmentRecord record(origin, kUp, depth);
-        if (toyKeepsShadowTests) record.Describe(0, 0, 1, light);
+        if (toyKeepsShadowTests) record.LightColour(light);
         record.CacheHeld(toyCacheHeld);
         ToyShadowLoop(scene, origin, depth, light, &record);
+        if (record.Wanted()) record.Describe(0, 0, 1);
     }
     rgbft[0] = float(hit->id);
     rgbft[1] = light[0];

@@ -244,7 +244,7 @@ inline void RecordRaySegment(const double origin[3], const double direction[3], 
 // test that passed none keeps its one segment alone.
 //
 // A test that passed something and started with empty shadow caches is also kept whole, to
-// be run again (Describe, CacheHeld; shadow_replay.h).
+// be run again (LightColour, CacheHeld, Describe; shadow_replay.h).
 // Costs one thread-local test when the thread is not recording.
 class ShadowSegmentRecord {
   public:
@@ -266,31 +266,30 @@ class ShadowSegmentRecord {
             if (!passed_ && recorder_->Count() >= before_) recorder_->KeepFirst(before_);
             recorder_->AddAimed(origin_, direction_, depth_ - projected_, aim_, blocker_, true);
         }
-        if (passed_ && colour_ && !cacheHeld_) KeepTest();
+        if (passed_ && described_ && !cacheHeld_) KeepTest();
     }
     ShadowSegmentRecord(const ShadowSegmentRecord &) = delete;
     ShadowSegmentRecord &operator=(const ShadowSegmentRecord &) = delete;
 
-    // Whether Describe is wanted: the sample keeps its shadow tests (shadow_replay.h).
-    bool KeepsTests() const { return recorder_ && recorder_->KeepsShadowTests(); }
-    // What the test takes besides its ray, read before it runs: the light's index, the ray's
-    // flags, the trace level, and `colour`, the light's colour the test filters in place
-    // (read again when it returns). Without it the test is not kept.
-    void Describe(std::uint16_t light, std::uint16_t rayFlags, std::uint8_t traceLevel, const float *colour) {
-        if (!KeepsTests()) return;
+    // As the test starts: `colour`, the light's colour the test filters in place (read now,
+    // and again when it returns), when the sample keeps its shadow tests (shadow_replay.h).
+    void LightColour(const float *colour) {
+        if (!recorder_ || !recorder_->KeepsShadowTests()) return;
         colour_ = colour;
-        test_.light = light;
-        test_.rayFlags = rayFlags;
-        test_.traceLevel = traceLevel;
-        for (int i = 0; i < 3; ++i) {
-            test_.origin[i] = origin_[i];
-            test_.direction[i] = direction_[i];
-            test_.colourIn[i] = colour[i];
-        }
-        test_.depth = depth_;
+        for (int i = 0; i < 3; ++i) test_.colourIn[i] = colour[i];
     }
     // The shadow caches held an object for the test to try first: it is not kept.
     void CacheHeld(bool held) { cacheHeld_ = held; }
+    // Whether Describe is wanted: the test passed something, and its sample keeps such tests.
+    bool Wanted() const { return passed_ && colour_ != nullptr; }
+    // As the test ends, when Wanted: what it took besides its ray and the light's colour
+    // (the light's index, the ray's flags, the trace level). Without it the test is not kept.
+    void Describe(std::uint16_t light, std::uint16_t rayFlags, std::uint8_t traceLevel) {
+        test_.light = light;
+        test_.rayFlags = rayFlags;
+        test_.traceLevel = traceLevel;
+        described_ = true;
+    }
     // A light with projected_through: the test ignores surfaces within `depth` of the light.
     void ProjectedDepth(double depth) { projected_ = depth; }
     // The test passed a transparent object (the frame's unit `unit`) at `distance` from the
@@ -298,6 +297,14 @@ class ShadowSegmentRecord {
     void PassedAt(double distance, std::uint32_t unit) {
         if (!recorder_) return;
         recorder_->AddAimed(origin_, direction_, distance, aim_, unit);
+        if (!passed_ && colour_) {
+            // The ray the test started with, before the loop first moves it.
+            for (int i = 0; i < 3; ++i) {
+                test_.origin[i] = origin_[i];
+                test_.direction[i] = direction_[i];
+            }
+            test_.depth = depth_;
+        }
         passed_ = true;
     }
     // A blocker (unit `unit`) at `distance` from the current origin answered the test;
@@ -323,8 +330,9 @@ class ShadowSegmentRecord {
     std::uint32_t blocker_ = kUnitNothing;
     bool opaque_ = false;
     bool passed_ = false;  // PassedAt was called: the loop's origin moved
-    const float *colour_ = nullptr;  // Describe was called: the light's colour
+    const float *colour_ = nullptr;  // LightColour was called: the light's colour
     bool cacheHeld_ = false;
+    bool described_ = false;
     ShadowTest test_;
 
     void KeepTest() {
