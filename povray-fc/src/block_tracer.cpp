@@ -248,10 +248,13 @@ bool BlockTracer::Begin(std::uint32_t serial, int left, int top, int right, int 
     const bool orderMatters = plan.orderChanged && old_->hasOrderSensitive;
     const bool unitsChanged = plan.changedUnits != nullptr && (old_->unitMask & plan.changedUnitMask) != 0;
     const bool translucentChanged = plan.translucentChanges != nullptr && !plan.translucentChanges->Empty();
-    // Samples kept by running their shadow tests again: any changed unit may be one they pass.
-    const bool staleAsked = old_->hasStaleShadowTests && plan.changedUnits != nullptr && plan.changedUnitMask != 0;
+    // Samples kept by running their shadow tests again: any changed unit may be one they pass
+    // (a glass that vanished leaves no hull, and the block's unit mask need not name it), and
+    // a new order may decide a tie on their way that their kept tied searches do not hold.
+    const bool staleAsked = old_->hasStaleShadowTests &&
+                            ((plan.changedUnits != nullptr && plan.changedUnitMask != 0) || plan.orderChanged);
     const bool nothingChanged =
-        (plan.changes == nullptr || plan.changes->Empty()) && !orderMatters && !unitsChanged;
+        (plan.changes == nullptr || plan.changes->Empty()) && !orderMatters && !unitsChanged && !staleAsked;
     if (nothingChanged) {
         plan.counters->reusedPixels += area;
         plan.counters->reusedSamples += old_->samples.size();
