@@ -182,7 +182,7 @@ bool KeptByShadowTests(const StoredSample &s, BlockRecord &record, const FramePl
     double clearance;
     std::uint32_t untested;
     if (reach && SampleIsDirty(s, record, *plan.changes, *reach, clearance, untested, pieces)) return false;
-    return ShadowTestsHold(record.ShadowTestsOf(s), replayer);
+    return ShadowTestsHold(tests, count, replayer);
 }
 
 // A clearance (>= 0, rounded down to a float whose low mantissa bits are cleared) and the

@@ -49,10 +49,8 @@ std::size_t UnpackShadowTests(const std::uint8_t *bytes, ShadowTest *tests) {
     return count;
 }
 
-bool ShadowTestsHold(const std::uint8_t *bytes, ShadowReplayer *replayer) {
+bool ShadowTestsHold(const ShadowTest *tests, std::size_t count, ShadowReplayer *replayer) {
     if (!replayer) return false;
-    ShadowTest tests[kMaxShadowTests];
-    const std::size_t count = UnpackShadowTests(bytes, tests);
     for (std::size_t i = 0; i < count; ++i) {
         float colour[3];
         if (!replayer->Replay(tests[i], colour)) return false;

@@ -76,9 +76,9 @@ std::size_t ShadowTestsBytes(const std::uint8_t *bytes);
 // Reads them back into `tests` (room for kMaxShadowTests); returns how many there are.
 std::size_t UnpackShadowTests(const std::uint8_t *bytes, ShadowTest *tests);
 
-// Runs every packed test at `bytes` again through `replayer` and says whether each gave the
-// colour it gave before, bit for bit; it stops at the first that did not.
-bool ShadowTestsHold(const std::uint8_t *bytes, ShadowReplayer *replayer);
+// Runs `tests` (as UnpackShadowTests gave them) again through `replayer` and says whether
+// each gave the colour it gave before, bit for bit; it stops at the first that did not.
+bool ShadowTestsHold(const ShadowTest *tests, std::size_t count, ShadowReplayer *replayer);
 
 }  // namespace povrayfc
 
