@@ -58,7 +58,7 @@ void DescribeKeptShadowTest(ShadowSegmentRecord& record, const pov::LightSource&
 	record.Describe(std::uint16_t(light.index), RayFlagBits(ray), std::uint8_t(ticket.traceLevel));
 }
 
-bool TraceShadowReplayer::Replay(const ShadowTest& test, float colourOut[3])
+bool TraceShadowReplayer::Replay(const ShadowTest& test, float colourOut[3], bool& passed)
 {
 	if(test.light >= scene_.lightSources.size())
 		return false;
@@ -76,6 +76,8 @@ bool TraceShadowReplayer::Replay(const ShadowTest& test, float colourOut[3])
 	trace_.ReplayPointLightShadowRay(light, depth, ray, colour, ticket, cached);
 	if(cached)
 		return false;
+	// The loop takes off what it passes from the depth left (by more than SHADOW_TOLERANCE).
+	passed = depth != test.depth;
 	colourOut[0] = colour.red();
 	colourOut[1] = colour.green();
 	colourOut[2] = colour.blue();

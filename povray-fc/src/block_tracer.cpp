@@ -161,28 +161,107 @@ bool BlockedTestMayMeet(const StoredSample &s, const BlockRecord &record, const 
     return false;
 }
 
-// Whether a sample found dirty is clean but for the pieces of the shadow tests it kept,
-// and those tests, run again through `replayer`, give the light the colours they gave
-// (shadow_replay.h). `units`, `blocked` and `reach` (nullptr: no change reaches its group)
-// say which of the tests above the frame asks for, as for any sample.
-bool KeptByShadowTests(const StoredSample &s, BlockRecord &record, const FramePlan &plan, bool units, bool blocked,
-                       const BlockHulls *reach, ShadowReplayer *replayer) {
-    if (!replayer || !s.shadowTests || s.segmentCount == StoredSample::kEverything) return false;
-    ShadowTest tests[kMaxShadowTests];
-    const std::size_t count = UnpackShadowTests(record.ShadowTestsOf(s), tests);
-    thread_local std::vector<std::uint8_t> skip;
-    skip.assign(s.segmentCount, 0);
-    for (std::size_t t = 0; t < count; ++t) {
-        if (std::size_t(tests[t].firstSegment) + tests[t].segmentCount > s.segmentCount) return false;
-        std::fill_n(skip.begin() + tests[t].firstSegment, tests[t].segmentCount, std::uint8_t(1));
-    }
-    const SkipMarked pieces{skip.data()};
+// Whether sample `s` is clean but for the segments `skip` marks, by the tests above the
+// frame asks for (`units`, `blocked`, and `reach`: nullptr when no change reaches its group).
+bool CleanBeside(const StoredSample &s, BlockRecord &record, const FramePlan &plan, bool units, bool blocked,
+                 const BlockHulls *reach, const std::uint8_t *skip) {
+    const SkipMarked pieces{skip};
     if (units && EndsOnChangedUnit(s, record, plan, pieces)) return false;
     if (blocked && BlockedTestMayMeet(s, record, *plan.translucentChanges, pieces)) return false;
     double clearance;
     std::uint32_t untested;
-    if (reach && SampleIsDirty(s, record, *plan.changes, *reach, clearance, untested, pieces)) return false;
-    return ShadowTestsHold(tests, count, replayer);
+    return !(reach && SampleIsDirty(s, record, *plan.changes, *reach, clearance, untested, pieces));
+}
+
+// The surface hits a sample kept, run again through `replayer`: whether each found what it
+// found (surface_replay.h), and the ids (this frame's) of the units they hit now.
+bool SurfaceHitsHold(const SurfaceHit *hits, std::size_t count, const FramePlan &plan, SurfaceReplayer *replayer,
+                     std::uint32_t *units) {
+    for (std::size_t h = 0; h < count; ++h) {
+        std::uint64_t signature;
+        std::uint32_t unitIndex;
+        if (!replayer->Replay(hits[h], signature, unitIndex) || signature != hits[h].signature) return false;
+        if (!SegmentUnitOf(unitIndex, plan.unitIds, plan.unitCount, units[h])) return false;
+    }
+    return true;
+}
+
+// Names, in the sample's packed segments, the units its kept hits found in this frame
+// (their segments are otherwise the new frame's: the same ray to the same depth). False
+// when a segment cannot be rewritten (then it must be traced).
+bool RenameHitUnits(const StoredSample &s, BlockRecord &record, const SurfaceHit *hits, std::size_t count,
+                    const std::uint32_t *units) {
+    thread_local UnpackScratch scratch;
+    scratch.Fit(s.segmentCount);
+    if (!record.Unpack(s, scratch.segments.data(), scratch.fans.data(), scratch.headers.data())) return false;
+    for (std::size_t h = 0; h < count; ++h) {
+        const Segment &segment = scratch.segments[hits[h].segment];
+        // Both nothing: the signature says whether the search found anything.
+        if (units[h] == Segment::kNoUnit && segment.unit == Segment::kNoUnit) continue;
+        if (units[h] == Segment::kNoUnit || segment.unit == Segment::kNoUnit) return false;
+        if (!RewritePackedUnit(record.packed.data() + scratch.headers[hits[h].segment], units[h])) return false;
+        record.unitMask |= UnitMaskBit(units[h]);
+        record.groupIndex.unitMask[s.group] |= UnitMaskBit(units[h]);
+    }
+    return true;
+}
+
+// Whether each of `tests` is one piece that ended on nothing (it passed nothing and nothing
+// blocked it).
+bool OnePieceEach(const StoredSample &s, const BlockRecord &record, const ShadowTest *tests, std::size_t count) {
+    for (std::size_t t = 0; t < count; ++t)
+        if (tests[t].segmentCount != 1) return false;
+    thread_local UnpackScratch scratch;
+    scratch.Fit(s.segmentCount);
+    if (!record.Unpack(s, scratch.segments.data(), scratch.fans.data())) return false;
+    for (std::size_t t = 0; t < count; ++t)
+        if (scratch.segments[tests[t].firstSegment].unit != Segment::kNoUnit) return false;
+    return true;
+}
+
+// How a dirty sample was kept by running what it kept again: by its surface hits alone, or
+// with its shadow tests (whose old pieces are then the new frame's, or stale).
+enum class KeptBy { kNothing, kSurfaceHits, kShadowTestsAsTraced, kShadowTests };
+
+// Whether a sample found dirty is clean but for the segments of the surface hits and the
+// pieces of the shadow tests it kept, and those, run again, give what they gave
+// (surface_replay.h, shadow_replay.h). The hits alone are tried first: a sample kept by its
+// hits is as good as traced, one kept by its shadow tests is stale. `units`, `blocked` and
+// `reach` say which tests the frame asks for, as for any sample.
+KeptBy KeptByReplays(const StoredSample &s, BlockRecord &record, const FramePlan &plan, bool units, bool blocked,
+                     const BlockHulls *reach, SurfaceReplayer *surfaceReplayer, ShadowReplayer *shadowReplayer) {
+    if (s.segmentCount == StoredSample::kEverything) return KeptBy::kNothing;
+    SurfaceHit hits[kMaxSurfaceHits];
+    const std::size_t hitCount =
+        s.surfaceHits && surfaceReplayer ? UnpackSurfaceHits(record.SurfaceHitsOf(s), hits) : 0;
+    ShadowTest tests[kMaxShadowTests];
+    const std::size_t testCount = s.shadowTests && shadowReplayer ? UnpackShadowTests(record.ShadowTestsOf(s), tests) : 0;
+    if (hitCount == 0 && testCount == 0) return KeptBy::kNothing;
+    thread_local std::vector<std::uint8_t> skip;
+    skip.assign(s.segmentCount, 0);
+    for (std::size_t h = 0; h < hitCount; ++h) {
+        if (hits[h].segment >= s.segmentCount) return KeptBy::kNothing;
+        skip[hits[h].segment] = 1;
+    }
+    std::uint32_t hitUnits[kMaxSurfaceHits];
+    // A stale sample runs its shadow tests whenever it is tried (shadow_replay.h).
+    if (hitCount > 0 && !s.shadowStale && CleanBeside(s, record, plan, units, blocked, reach, skip.data())) {
+        if (!SurfaceHitsHold(hits, hitCount, plan, surfaceReplayer, hitUnits)) return KeptBy::kNothing;
+        return RenameHitUnits(s, record, hits, hitCount, hitUnits) ? KeptBy::kSurfaceHits : KeptBy::kNothing;
+    }
+    if (testCount == 0) return KeptBy::kNothing;
+    for (std::size_t t = 0; t < testCount; ++t) {
+        if (std::size_t(tests[t].firstSegment) + tests[t].segmentCount > s.segmentCount) return KeptBy::kNothing;
+        std::fill_n(skip.begin() + tests[t].firstSegment, tests[t].segmentCount, std::uint8_t(1));
+    }
+    if (!CleanBeside(s, record, plan, units, blocked, reach, skip.data())) return KeptBy::kNothing;
+    if (hitCount > 0 && !SurfaceHitsHold(hits, hitCount, plan, surfaceReplayer, hitUnits)) return KeptBy::kNothing;
+    bool passedNone;
+    if (!ShadowTestsHold(tests, testCount, shadowReplayer, passedNone)) return KeptBy::kNothing;
+    if (hitCount > 0 && !RenameHitUnits(s, record, hits, hitCount, hitUnits)) return KeptBy::kNothing;
+    // Tests that passed nothing then and now, each one piece to the light: those pieces are
+    // the new frame's, as a hit's segment is.
+    return passedNone && OnePieceEach(s, record, tests, testCount) ? KeptBy::kShadowTestsAsTraced : KeptBy::kShadowTests;
 }
 
 // A clearance (>= 0, rounded down to a float whose low mantissa bits are cleared) and the
@@ -298,7 +377,8 @@ bool BlockTracer::Begin(std::uint32_t serial, int left, int top, int right, int 
         // Group by group, passing over those nothing of this frame concerns (group_index.h).
         const GroupIndex &index = old_->groupIndex;
         oldDirty_.assign(n, 0);
-        std::uint64_t tested = 0, cleared = 0, tiedReplayed = 0, tiedKept = 0, shadowTried = 0, shadowKept = 0;
+        std::uint64_t tested = 0, cleared = 0, tiedReplayed = 0, tiedKept = 0, replayTried = 0, shadowKept = 0,
+                      surfaceKept = 0;
         for (std::size_t g = 0; g < groupReach_.size(); ++g) {
             const std::uint8_t flags = index.flags[g];
             const bool everything = (flags & GroupIndex::kEverything) != 0;
@@ -331,12 +411,20 @@ bool BlockTracer::Begin(std::uint32_t serial, int left, int top, int right, int 
                         }
                     }
                 }
-                // Dirty through the shadow tests it kept alone, maybe: they are run again.
-                if (dirty && s.shadowTests && shadowReplayer_) {
-                    ++shadowTried;
-                    dirty = !KeptByShadowTests(s, *old_, plan, units, blocked,
-                                               groupReaches_[g] ? &groupReach_[g] : nullptr, shadowReplayer_);
-                    if (!dirty) {
+                // Dirty through the surface hits or shadow tests it kept alone, maybe: they
+                // are run again.
+                if (dirty && ((s.surfaceHits && surfaceReplayer_) || (s.shadowTests && shadowReplayer_))) {
+                    ++replayTried;
+                    const KeptBy kept = KeptByReplays(s, *old_, plan, units, blocked,
+                                                      groupReaches_[g] ? &groupReach_[g] : nullptr, surfaceReplayer_,
+                                                      shadowReplayer_);
+                    dirty = kept == KeptBy::kNothing;
+                    if (kept == KeptBy::kSurfaceHits) ++surfaceKept;
+                    if (kept == KeptBy::kShadowTestsAsTraced) {
+                        ++shadowKept;
+                        s.shadowStale = 0;  // every segment it holds is now this frame's
+                    }
+                    if (kept == KeptBy::kShadowTests) {
                         ++shadowKept;
                         s.shadowStale = 1;
                         old_->hasStaleShadowTests = true;
@@ -358,8 +446,9 @@ bool BlockTracer::Begin(std::uint32_t serial, int left, int top, int right, int 
         plan.counters->clearedSamples += cleared;
         plan.counters->tiedSamplesReplayed += tiedReplayed;
         plan.counters->tiedSamplesKept += tiedKept;
-        plan.counters->shadowSamplesTried += shadowTried;
+        plan.counters->replaySamplesTried += replayTried;
         plan.counters->shadowSamplesKept += shadowKept;
+        plan.counters->surfaceSamplesKept += surfaceKept;
     }
     if (!anyDirty) {
         plan.counters->reusedPixels += area;
@@ -442,6 +531,11 @@ void BlockTracer::BeginSample() {
     if (!active_ || !record_) return;
     recorder_.Begin(nextSegments_, nextFanOf_, next_.packed, next_.apexes, plan_->unitIds, plan_->unitCount,
                     packTightly_);
+    // Traced again where a record was: a change reached it, and may reach it again. It keeps
+    // its hits, and the shadow tests that light them.
+    const bool reached = surfaceReplayer_ != nullptr && old_ != nullptr;
+    recorder_.KeepSurfaceHits(reached);
+    recorder_.KeepEveryShadowTest(reached && shadowReplayer_ != nullptr);
     StartRecordingRays(recorder_);
 }
 
@@ -475,6 +569,7 @@ void BlockTracer::EndSample(double x, double y, const float rgbft[5]) {
             s.shadowTests = 1;
             recorder_.PackShadowTests();
         }
+        if (recorder_.PackSurfaceHits()) s.surfaceHits = 1;
         for (std::size_t k = recorder_.First(); k < nextSegments_.size(); ++k)
             if (nextSegments_[k].unit != Segment::kNoUnit) nextUnitMask_ |= UnitMaskBit(nextSegments_[k].UnitId());
     }

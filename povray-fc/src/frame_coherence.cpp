@@ -241,8 +241,9 @@ void FrameCoherence::EndFrame(std::uint64_t raysTraced) {
         current_.samplesCleared = counters_.clearedSamples.load();
         current_.tiedSamplesReplayed = counters_.tiedSamplesReplayed.load();
         current_.tiedSamplesKept = counters_.tiedSamplesKept.load();
-        current_.shadowSamplesTried = counters_.shadowSamplesTried.load();
+        current_.replaySamplesTried = counters_.replaySamplesTried.load();
         current_.shadowSamplesKept = counters_.shadowSamplesKept.load();
+        current_.surfaceSamplesKept = counters_.surfaceSamplesKept.load();
         // Blocks this frame did not render missed its changes.
         if (store_) store_->ForgetUntouched();
         current_.storeBytes = store_ ? store_->MemoryBytes() : 0;

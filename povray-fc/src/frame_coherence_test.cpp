@@ -137,6 +137,19 @@ void TraceToyGlassShadow(const ToyScene &scene, const ToyBox *hit, double x, dou
     rgbft[1] = light[0];
 }
 
+// The signature of what the toy's camera search found, as its shading reads it: whether it
+// hit, the depth, and the box (its place, which the shadow ray passes over, and its id).
+std::uint64_t ToyHitSignature(const ToyScene &scene, const ToyBox *hit, double best) {
+    SignatureHash hash;
+    hash.Add(hit != nullptr);
+    if (hit) {
+        hash.Add(best);
+        hash.Add(hit->id);
+        hash.Add(UnitOf(scene, hit));
+    }
+    return hash.Value();
+}
+
 // One camera sample at image position (x, y): a ray along +z, the box it hits, and a
 // shadow ray from there straight up to the light (to the nearest box in its way). Records
 // the rays like POV-Ray's hooks, each with the unit it ended on.
@@ -150,6 +163,13 @@ void TraceToy(const ToyScene &scene, double x, double y, float rgbft[5]) {
         NearestBox(scene, o, d, best, hit);
     }
     RecordRaySegment(o, d, hit ? best : 2e10, UnitOf(scene, hit));
+    if (SurfaceHitWanted()) {
+        SurfaceHit kept;
+        std::copy(o, o + 3, kept.origin);
+        std::copy(d, d + 3, kept.direction);
+        kept.signature = ToyHitSignature(scene, hit, best);
+        RecordSurfaceHit(kept);
+    }
     std::memset(rgbft, 0, 5 * sizeof(float));
     if (!hit) return;
     if (scene.glassShadows) {
@@ -212,12 +232,13 @@ class ToyReplayer : public TieReplayer {
 class ToyShadowReplayer : public ShadowReplayer {
   public:
     explicit ToyShadowReplayer(const ToyScene &scene) : scene_(scene) {}
-    bool Replay(const ShadowTest &test, float colourOut[3]) override {
+    bool Replay(const ShadowTest &test, float colourOut[3], bool &passed) override {
         ++runs;
         double origin[3] = {test.origin[0], test.origin[1], test.origin[2]};
         double depth = test.depth;
         std::copy(test.colourIn, test.colourIn + 3, colourOut);
         ToyShadowLoop(scene_, origin, depth, colourOut, nullptr);
+        passed = depth != test.depth;
         if (lies) std::copy(test.colourOut, test.colourOut + 3, colourOut);
         return true;
     }
@@ -228,8 +249,31 @@ class ToyShadowReplayer : public ShadowReplayer {
     const ToyScene &scene_;
 };
 
-// Whether RenderFc gives its tracer replayers (as the patched trace task does).
-bool toyReplays = true;
+// The toy's camera search run again in the frame being rendered, with the signature of what
+// it finds, as the patch layer runs POV-Ray's. `lies`: it answers the signature kept (the
+// rule made blind, for the tests that must catch it).
+class ToySurfaceReplayer : public SurfaceReplayer {
+  public:
+    explicit ToySurfaceReplayer(const ToyScene &scene) : scene_(scene) {}
+    bool Replay(const SurfaceHit &hit, std::uint64_t &signature, std::uint32_t &unitIndex) override {
+        ++runs;
+        double best = 1e30;
+        const ToyBox *box = nullptr;
+        NearestBox(scene_, hit.origin, hit.direction, best, box);
+        signature = lies ? hit.signature : ToyHitSignature(scene_, box, best);
+        unitIndex = UnitOf(scene_, box);
+        return true;
+    }
+    static inline int runs = 0;
+    static inline bool lies = false;
+
+  private:
+    const ToyScene &scene_;
+};
+
+// Whether RenderFc gives its tracer replayers (as the patched trace task does), and among
+// them one for surface hits.
+bool toyReplays = true, toySurfaceReplays = true;
 
 using Image = std::vector<float>;  // 5 floats a pixel
 
@@ -330,9 +374,11 @@ FcResult RenderFc(const ToyScene &scene, int frame, SceneEffects effects = {}, s
     BlockTracer tracer(fc.Plan());
     ToyReplayer replayer(scene);
     ToyShadowReplayer shadowReplayer(scene);
+    ToySurfaceReplayer surfaceReplayer(scene);
     if (toyReplays) {
         tracer.SetTieReplayer(&replayer);
         tracer.SetShadowReplayer(&shadowReplayer);
+        if (toySurfaceReplays) tracer.SetSurfaceReplayer(&surfaceReplayer);
     }
     std::uint32_t serial = 0;
     for (int by = 0; by < kH; by += kBlock)
@@ -382,6 +428,8 @@ class FrameCoherenceRun : public ::testing::Test {
   protected:
     void SetUp() override {
         toyReplays = true;
+        toySurfaceReplays = true;
+        ToySurfaceReplayer::lies = false;
         toyKeepsShadowTests = true;
         toyCacheHeld = false;
         ToyShadowReplayer::lies = false;
@@ -1192,7 +1240,7 @@ TEST_F(FrameCoherenceRun, ShadowTestsThroughMovedGlassThatGiveTheSameColourAreKe
     const FcResult kept = RenderAllExact(frames);
     const FrameStats stats = FrameCoherence::Get().LastStats();
     EXPECT_GT(stats.shadowSamplesKept, 0u);
-    EXPECT_LE(stats.shadowSamplesKept, stats.shadowSamplesTried);
+    EXPECT_LE(stats.shadowSamplesKept, stats.replaySamplesTried);
     EXPECT_GT(ToyShadowReplayer::runs, 0);
     // Without replayers every sample under the glass is traced again.
     SetUp();
@@ -1210,7 +1258,7 @@ TEST_F(FrameCoherenceRun, ShadowTestsAreTracedAgainWhenTheRunGivesAnotherColour)
     const std::vector<ToyScene> frames = {UnderGlass(2, 20, 20, 0.5f), UnderGlass(2, 20, 21, 0.75f)};
     RenderAllExact(frames);
     EXPECT_EQ(FrameCoherence::Get().LastStats().shadowSamplesKept, 0u);
-    EXPECT_GT(FrameCoherence::Get().LastStats().shadowSamplesTried, 0u);
+    EXPECT_GT(FrameCoherence::Get().LastStats().replaySamplesTried, 0u);
     SetUp();
     ToyShadowReplayer::lies = true;
     RenderFc(frames[0], 1);
@@ -1232,7 +1280,7 @@ TEST_F(FrameCoherenceRun, ASampleKeptByItsShadowTestsRunsThemAgainWhenTheGlassMo
     // runs its tests again and is traced.
     RenderAllExact({UnderGlass(2, 20), UnderGlass(3, 20), UnderGlass(40, 20)});
     const FrameStats stats = FrameCoherence::Get().LastStats();
-    EXPECT_GT(stats.shadowSamplesTried, 0u);
+    EXPECT_GT(stats.replaySamplesTried, 0u);
     EXPECT_EQ(stats.shadowSamplesKept, 0u);
 }
 
@@ -1240,7 +1288,7 @@ TEST_F(FrameCoherenceRun, ASampleKeptByItsShadowTestsIsTracedWhenTheGlassVanishe
     // The glass goes altogether: nothing new appears (no hull), and the blocks under it hold
     // no sample that names its id now, only the stale pieces that name its first one.
     RenderAllExact({UnderGlass(2, 20), UnderGlass(3, 20), GlassGone(20)});
-    EXPECT_GT(FrameCoherence::Get().LastStats().shadowSamplesTried, 0u);
+    EXPECT_GT(FrameCoherence::Get().LastStats().replaySamplesTried, 0u);
 }
 
 TEST_F(FrameCoherenceRun, AShadowTestThatStartedWithACachedBlockerIsNotKept) {
@@ -1248,11 +1296,94 @@ TEST_F(FrameCoherenceRun, AShadowTestThatStartedWithACachedBlockerIsNotKept) {
     // (the cache decided what it met first): its sample is traced like one without them.
     toyCacheHeld = true;
     RenderAllExact({UnderGlass(2, 20), UnderGlass(3, 20)});
-    EXPECT_EQ(FrameCoherence::Get().LastStats().shadowSamplesTried, 0u);
+    EXPECT_EQ(FrameCoherence::Get().LastStats().replaySamplesTried, 0u);
     SetUp();
     toyKeepsShadowTests = false;
     RenderAllExact({UnderGlass(2, 20), UnderGlass(3, 20)});
-    EXPECT_EQ(FrameCoherence::Get().LastStats().shadowSamplesTried, 0u);
+    EXPECT_EQ(FrameCoherence::Get().LastStats().replaySamplesTried, 0u);
+}
+
+}  // namespace
+}  // namespace povrayfc
+
+namespace povrayfc {
+namespace {
+
+// The toy scene with its second box `width` wide from x = 1, growing along its front face
+// (which stays at z = 0) with colour `id`, and a blocker above that face's front at x =
+// blockerX (its shadow falls on the face when it is over it). Shadow tests are the loop
+// (ShadowSegmentRecord), from just in front of the surface hit.
+ToyScene Growing(double width, std::uint64_t id = 2, double blockerX = 40) {
+    ToyScene s = Frame(1);
+    s.boxes[1].box.hi.x = 1 + width;
+    s.boxes[1].id = id;
+    s.boxes.push_back({9, Box{Vec3{blockerX, 6, -0.5}, Vec3{blockerX + 1, 6.5, 0.5}}});
+    s.glassShadows = true;
+    return s;
+}
+
+TEST_F(FrameCoherenceRun, SurfaceHitsThatFindTheSameSurfaceKeepTheirSamples) {
+    // Invariant: a sample whose only rays that meet a change are hits (and the shadow tests
+    // that light them) is kept when its camera search, run again, finds the same surface
+    // to the bit; its pixels are then exactly the full render's. The box grows along its
+    // face: from the third frame (the second traced those samples and kept their hits), its
+    // old face is kept, only its new strip traced.
+    const std::vector<ToyScene> frames = {Growing(2.5), Growing(3.5), Growing(4.5), Growing(5.5)};
+    ToySurfaceReplayer::runs = 0;
+    const FcResult kept = RenderAllExact(frames);
+    const FrameStats stats = FrameCoherence::Get().LastStats();
+    EXPECT_GT(stats.surfaceSamplesKept + stats.shadowSamplesKept, 0u);
+    EXPECT_GT(ToySurfaceReplayer::runs, 0);
+    SetUp();
+    toySurfaceReplays = false;
+    const FcResult traced = RenderAllExact(frames);
+    EXPECT_EQ(traced.image, kept.image);
+    EXPECT_GT(traced.tracedSamples, kept.tracedSamples);
+}
+
+TEST_F(FrameCoherenceRun, ASurfaceHitThatFindsAnotherSurfaceIsTraced) {
+    // The box grows and takes another colour: every hit on it finds another surface, so its
+    // samples are traced (a replayer that answered the signature kept would leave the old
+    // colour).
+    const std::vector<ToyScene> frames = {Growing(2.5), Growing(3.5), Growing(4.5, 5)};
+    RenderAllExact(frames);
+    EXPECT_GT(FrameCoherence::Get().LastStats().replaySamplesTried, 0u);
+    SetUp();
+    ToySurfaceReplayer::lies = true;
+    RenderFc(frames[0], 1);
+    RenderFc(frames[1], 2);
+    const FcResult blind = RenderFc(frames[2], 3);
+    EXPECT_NE(blind.image, RenderFull(frames[2]));
+}
+
+TEST_F(FrameCoherenceRun, ASampleKeptByItsHitsNamesTheUnitItHitsNow) {
+    // Kept in the third frame, the samples on the box name the box's id of that frame (it
+    // changed, so it got a new one): when only its colour changes next (no hull, only the
+    // segments that ended on it), every one of them is traced.
+    RenderAllExact({Growing(2.5), Growing(3.5), Growing(4.5), Growing(4.5, 5)});
+    EXPECT_GT(FrameCoherence::Get().LastStats().traced, 0u);
+}
+
+// Growing with a slab of glass high above the face, tinted `tint` (its id says so).
+ToyScene GrowingUnderGlass(double width, std::uint64_t glassId, float tint) {
+    ToyScene s = Growing(width);
+    s.boxes.push_back({glassId, Box{Vec3{0, 20, -20}, Vec3{10, 21, 20}}, tint});
+    return s;
+}
+
+TEST_F(FrameCoherenceRun, AShadowTestThatPassesSomethingNewIsRunAgainWhenThatChanges) {
+    // A clear glass (it lets all light through) appears over the growing face: the face's
+    // shadow tests, run again, give the same colour though they now pass it, so their one
+    // piece to the light is not the new frame's (which would end on the glass). When the
+    // glass then takes a tint (its appearance alone: no hull, only segments that ended on
+    // it), those samples must run their tests again.
+    RenderAllExact({Growing(2.5), Growing(3.5), GrowingUnderGlass(4.5, 30, 1.0f), GrowingUnderGlass(4.5, 31, 0.5f)});
+}
+
+TEST_F(FrameCoherenceRun, ASampleWhoseShadowTestMeetsAChangeIsTracedWhateverItsHitsFind) {
+    // The blocker comes over the growing face: its hits still find the same surface, but
+    // the shadow tests that light it now meet the blocker.
+    RenderAllExact({Growing(2.5), Growing(3.5), Growing(4.5, 2, 2.0)});
 }
 
 }  // namespace

@@ -37,7 +37,7 @@ std::string FrameStats::LogLine() const {
 std::string FrameStats::CsvHeader() {
     return "frame,clock,coherent,full_reason,pixels,traced,reused,changed_hulls,samples_traced,"
            "samples_reused,rays,bookkeeping_s,store_bytes,render_s,samples_tested,samples_cleared,changed_units,"
-           "over_budget_blocks,tied_samples_replayed,tied_samples_kept,shadow_samples_tried,shadow_samples_kept";
+           "over_budget_blocks,tied_samples_replayed,tied_samples_kept,replay_samples_tried,shadow_samples_kept,surface_samples_kept";
 }
 
 std::string FrameStats::CsvRow() const {
@@ -47,7 +47,7 @@ std::string FrameStats::CsvRow() const {
         << ',' << pixels << ',' << traced << ',' << reused << ',' << changedHulls << ',' << samplesTraced << ',' << samplesReused
         << ',' << rays << ',' << bookkeepingSeconds << ',' << storeBytes << ',' << renderSeconds << ','
         << samplesTested << ',' << samplesCleared << ',' << changedUnits << ',' << overBudgetBlocks << ','
-        << tiedSamplesReplayed << ',' << tiedSamplesKept << ',' << shadowSamplesTried << ',' << shadowSamplesKept;
+        << tiedSamplesReplayed << ',' << tiedSamplesKept << ',' << replaySamplesTried << ',' << shadowSamplesKept << ',' << surfaceSamplesKept;
     return row.str();
 }
 

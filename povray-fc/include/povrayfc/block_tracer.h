@@ -24,6 +24,7 @@
 #include "povrayfc/ray_recording.h"
 #include "povrayfc/sample_store.h"
 #include "povrayfc/shadow_replay.h"
+#include "povrayfc/surface_replay.h"
 #include "povrayfc/tie_replay.h"
 
 namespace povrayfc {
@@ -37,10 +38,15 @@ class BlockTracer {
     void SetTieReplayer(TieReplayer *replayer) { tieReplayer_ = replayer; }
     // Runs shadow tests again for this thread (shadow_replay.h); with one, the samples it
     // records keep their shadow tests that passed something letting light through.
-    void SetShadowReplayer(ShadowReplayer *replayer) {
+    // `cachesMatter`: the scene lets light through somewhere (SampleRecorder::ShadowCachesMatter).
+    void SetShadowReplayer(ShadowReplayer *replayer, bool cachesMatter = true) {
         shadowReplayer_ = replayer;
         recorder_.KeepShadowTests(replayer != nullptr);
+        recorder_.ShadowCachesMatter(cachesMatter);
     }
+    // Runs surface hits again for this thread (surface_replay.h); with one, a sample traced
+    // again because a change reached it keeps its first hits.
+    void SetSurfaceReplayer(SurfaceReplayer *replayer) { surfaceReplayer_ = replayer; }
 
     // Starts block `serial` (POV-Ray's block number) covering [left..right]x[top..bottom].
     // Returns true when the stored block can be sent as it is: then StoredPixel() gives
@@ -101,6 +107,7 @@ class BlockTracer {
     const FramePlan *plan_;
     TieReplayer *tieReplayer_ = nullptr;
     ShadowReplayer *shadowReplayer_ = nullptr;
+    SurfaceReplayer *surfaceReplayer_ = nullptr;
     bool active_ = false;   // this block is under fc (mode != kIdle)
     bool endedActive_ = false;  // End() ended a block under fc (SendOnlyChanged)
     bool record_ = false;   // mode kRecord: samples and segments are kept

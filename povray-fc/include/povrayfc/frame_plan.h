@@ -29,15 +29,17 @@ struct FrameCounters {
     // Order-sensitive samples clean but for the order of the objects (their tied searches
     // are run again where they could be kept: tie_replay.h), and those kept.
     std::atomic<std::uint64_t> tiedSamplesReplayed{0}, tiedSamplesKept{0};
-    // Samples dirty with shadow tests kept (shadow_replay.h), and those of them kept when the
-    // rest of the sample was clean and the tests, run again, gave the same colours.
-    std::atomic<std::uint64_t> shadowSamplesTried{0}, shadowSamplesKept{0};
+    // Samples dirty with surface hits or shadow tests kept (surface_replay.h,
+    // shadow_replay.h), and those of them kept when the rest of the sample was clean and
+    // what they kept, run again, gave what it gave: by their shadow tests (with or without
+    // hits), and by their surface hits alone.
+    std::atomic<std::uint64_t> replaySamplesTried{0}, shadowSamplesKept{0}, surfaceSamplesKept{0};
 
     void Reset() {
         tracedPixels = reusedPixels = tracedSamples = reusedSamples = reusedBlocks = replayedBlocks = 0;
         testedSamples = clearedSamples = overBudgetBlocks = unrecordedSamples = 0;
         tiedSamplesReplayed = tiedSamplesKept = 0;
-        shadowSamplesTried = shadowSamplesKept = 0;
+        replaySamplesTried = shadowSamplesKept = surfaceSamplesKept = 0;
     }
 };
 

@@ -25,9 +25,10 @@ struct FrameStats {
     // Order-sensitive samples clean but for the order of the objects (their tied searches
     // are run again where they could be kept: tie_replay.h), and those of them kept.
     std::uint64_t tiedSamplesReplayed = 0, tiedSamplesKept = 0;
-    // Samples dirty with shadow tests kept to be run again, and those the run kept
-    // (shadow_replay.h).
-    std::uint64_t shadowSamplesTried = 0, shadowSamplesKept = 0;
+    // Samples dirty with surface hits or shadow tests kept to be run again, and those the
+    // run kept: by their shadow tests, and by their surface hits alone (shadow_replay.h,
+    // surface_replay.h).
+    std::uint64_t replaySamplesTried = 0, shadowSamplesKept = 0, surfaceSamplesKept = 0;
     std::uint64_t rays = 0;       // rays traced (POV-Ray's "Rays:" count)
     double bookkeepingSeconds = 0.0;  // change detection and statistics, outside the render threads
     std::uint64_t storeBytes = 0;     // stored samples, segments and pixels

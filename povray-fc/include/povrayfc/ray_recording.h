@@ -21,6 +21,7 @@
 #include "povrayfc/segment.h"
 #include "povrayfc/segment_packing.h"
 #include "povrayfc/shadow_replay.h"
+#include "povrayfc/surface_replay.h"
 #include "povrayfc/tie_replay.h"
 
 namespace povrayfc {
@@ -67,11 +68,23 @@ class SampleRecorder {
         ties_.clear();
         tiesComplete_ = true;
         shadowTests_.clear();
+        surfaceHits_.clear();
+        lastStored_ = false;
     }
     // Whether the samples keep their shadow tests that passed something letting light
     // through, to run them again (shadow_replay.h): only where they can be run again.
     void KeepShadowTests(bool keep) { keepShadowTests_ = keep; }
     bool KeepsShadowTests() const { return keepShadowTests_; }
+    // Whether this sample also keeps its shadow tests that passed nothing and reached the
+    // light (set for each sample, with KeepSurfaceHits: they start where its hits end).
+    void KeepEveryShadowTest(bool keep) { keepEveryShadowTest_ = keep; }
+    bool KeepsEveryShadowTest() const { return keepEveryShadowTest_; }
+    // Whether what the shadow caches held as a test started may change what it gives: in a
+    // scene where something lets light through (a cached object is tried first, and what
+    // it filtered counts first). Elsewhere only an opaque surface is cached, and a cached
+    // one that does not block leaves the test to the loop (patch 0201's exact cache).
+    void ShadowCachesMatter(bool matter) { shadowCachesMatter_ = matter; }
+    bool ShadowCachesMatterToTests() const { return shadowCachesMatter_; }
     // One such test of the sample (the first kMaxShadowTests are kept).
     void AddShadowTest(const ShadowTest &test) {
         if (shadowTests_.size() < kMaxShadowTests) shadowTests_.push_back(test);
@@ -79,9 +92,31 @@ class SampleRecorder {
     bool HasShadowTests() const { return !shadowTests_.empty(); }
     // Packs them after the sample's segments and tied searches: its last bytes.
     void PackShadowTests() { povrayfc::PackShadowTests(shadowTests_, *packed_); }
+    // Whether this sample keeps the first kMaxSurfaceHits of its rays' hits, to run them
+    // again (surface_replay.h): set for each sample, where they can be run again.
+    void KeepSurfaceHits(bool keep) { keepSurfaceHits_ = keep; }
+    bool KeepsSurfaceHits() const { return keepSurfaceHits_ && surfaceHits_.size() < kMaxSurfaceHits; }
+    // The hit of the ray Add recorded last, when it was stored (its segment is the last).
+    void AddSurfaceHit(SurfaceHit hit) {
+        if (!lastStored_ || surfaceHits_.size() >= kMaxSurfaceHits) return;
+        hit.segment = std::uint32_t(Count() - 1);
+        surfaceHits_.push_back(hit);
+    }
+    // Packs them after the sample's shadow tests (none whose segment a shadow test's
+    // opaque blocker dropped since: KeepFirst). Returns whether any were packed.
+    bool PackSurfaceHits() {
+        std::size_t kept = 0;
+        for (const SurfaceHit &hit : surfaceHits_)
+            if (hit.segment < Count()) surfaceHits_[kept++] = hit;
+        surfaceHits_.resize(kept);
+        if (kept == 0) return false;
+        povrayfc::PackSurfaceHits(surfaceHits_, *packed_);
+        return true;
+    }
     // A ray that ended on the frame's unit `unit` (the index the parser wrote into what it
     // hit, or kUnitNothing).
     void Add(const double origin[3], const double direction[3], double tmax, std::uint32_t unit) {
+        lastStored_ = false;
         // A ray that cannot be placed: any change must re-trace it (and it must not become
         // the block's camera apex).
         if (!(std::isfinite(origin[0]) && std::isfinite(origin[1]) && std::isfinite(origin[2]))) {
@@ -90,6 +125,7 @@ class SampleRecorder {
         }
         const std::uint8_t fan = apexes_->OriginFan(origin);
         if (!Store(origin, direction, tmax, UnitId(unit), fan)) return;
+        lastStored_ = true;
         // POV-Ray records a ray when it found what the ray hits, and lights a point
         // (its shadow tests) before it follows the reflected and refracted rays: shadow
         // rays after a ray that did not start at the camera leave the points such rays
@@ -101,6 +137,7 @@ class SampleRecorder {
     // `opaqueBlocker`: an opaque surface of `unit` ended the test (kOpaqueBlocker).
     void AddAimed(const double origin[3], const double direction[3], double tmax, const double aim[3],
                   std::uint32_t unit, bool opaqueBlocker = false) {
+        lastStored_ = false;
         // A light point that is no point must not become a bundle's apex.
         if (!(std::isfinite(aim[0]) && std::isfinite(aim[1]) && std::isfinite(aim[2]))) {
             everything_ = true;
@@ -213,7 +250,12 @@ class SampleRecorder {
     std::vector<TiedSearch> ties_;  // the sample's tied searches, in the order they ran
     bool tiesComplete_ = true;      // every tied search of the sample is in ties_
     bool keepShadowTests_ = false;
+    bool keepEveryShadowTest_ = false;
+    bool shadowCachesMatter_ = true;
     std::vector<ShadowTest> shadowTests_;  // the sample's, in the order they ran
+    bool keepSurfaceHits_ = false;
+    std::vector<SurfaceHit> surfaceHits_;  // the sample's, in the order they ran
+    bool lastStored_ = false;  // the last Add stored its segment (the last one)
 };
 
 namespace detail {
@@ -225,6 +267,14 @@ extern thread_local SampleRecorder *tlsRecorder;
 // the parser wrote into the object the ray ended on, or kUnitNothing.
 inline void RecordRaySegment(const double origin[3], const double direction[3], double tmax, std::uint32_t unit) {
     if (detail::tlsRecorder) detail::tlsRecorder->Add(origin, direction, tmax, unit);
+}
+
+// Whether the ray RecordRaySegment just recorded should be described as a surface hit
+// (surface_replay.h): then the patch layer calls RecordSurfaceHit. Costs one thread-local
+// test when the thread is not recording.
+inline bool SurfaceHitWanted() { return detail::tlsRecorder && detail::tlsRecorder->KeepsSurfaceHits(); }
+inline void RecordSurfaceHit(const SurfaceHit &hit) {
+    if (detail::tlsRecorder) detail::tlsRecorder->AddSurfaceHit(hit);
 }
 
 // A shadow test's segments, in pieces: up to each transparent object the test passes
@@ -266,7 +316,8 @@ class ShadowSegmentRecord {
             if (!passed_ && recorder_->Count() >= before_) recorder_->KeepFirst(before_);
             recorder_->AddAimed(origin_, direction_, depth_ - projected_, aim_, blocker_, true);
         }
-        if (passed_ && described_ && !cacheHeld_) KeepTest();
+        if (described_ && !(cacheHeld_ && recorder_->ShadowCachesMatterToTests()) && (passed_ || (every_ && !blocked_)))
+            KeepTest();
     }
     ShadowSegmentRecord(const ShadowSegmentRecord &) = delete;
     ShadowSegmentRecord &operator=(const ShadowSegmentRecord &) = delete;
@@ -277,11 +328,15 @@ class ShadowSegmentRecord {
         if (!recorder_ || !recorder_->KeepsShadowTests()) return;
         colour_ = colour;
         for (int i = 0; i < 3; ++i) test_.colourIn[i] = colour[i];
+        if (!recorder_->KeepsEveryShadowTest()) return;
+        every_ = true;
+        CaptureRay();
     }
     // The shadow caches held an object for the test to try first: it is not kept.
     void CacheHeld(bool held) { cacheHeld_ = held; }
-    // Whether Describe is wanted: the test passed something, and its sample keeps such tests.
-    bool Wanted() const { return passed_ && colour_ != nullptr; }
+    // Whether Describe is wanted: the test passed something, or its sample keeps every test,
+    // and it keeps such tests.
+    bool Wanted() const { return (passed_ || every_) && colour_ != nullptr; }
     // As the test ends, when Wanted: what it took besides its ray and the light's colour
     // (the light's index, the ray's flags, the trace level). Without it the test is not kept.
     void Describe(std::uint16_t light, std::uint16_t rayFlags, std::uint8_t traceLevel) {
@@ -297,14 +352,8 @@ class ShadowSegmentRecord {
     void PassedAt(double distance, std::uint32_t unit) {
         if (!recorder_) return;
         recorder_->AddAimed(origin_, direction_, distance, aim_, unit);
-        if (!passed_ && colour_) {
-            // The ray the test started with, before the loop first moves it.
-            for (int i = 0; i < 3; ++i) {
-                test_.origin[i] = origin_[i];
-                test_.direction[i] = direction_[i];
-            }
-            test_.depth = depth_;
-        }
+        // The ray the test started with, before the loop first moves it.
+        if (!passed_ && colour_ && !every_) CaptureRay();
         passed_ = true;
     }
     // A blocker (unit `unit`) at `distance` from the current origin answered the test;
@@ -331,10 +380,18 @@ class ShadowSegmentRecord {
     bool opaque_ = false;
     bool passed_ = false;  // PassedAt was called: the loop's origin moved
     const float *colour_ = nullptr;  // LightColour was called: the light's colour
+    bool every_ = false;             // and the sample keeps every test (the ray is captured)
     bool cacheHeld_ = false;
     bool described_ = false;
     ShadowTest test_;
 
+    void CaptureRay() {
+        for (int i = 0; i < 3; ++i) {
+            test_.origin[i] = origin_[i];
+            test_.direction[i] = direction_[i];
+        }
+        test_.depth = depth_;
+    }
     void KeepTest() {
         const std::size_t count = recorder_->Count();
         if (count < before_ || count - before_ > 0xffff) return;

@@ -31,6 +31,7 @@
 #include "povrayfc/segment_fans.h"
 #include "povrayfc/segment_packing.h"
 #include "povrayfc/shadow_replay.h"
+#include "povrayfc/surface_replay.h"
 #include "povrayfc/tie_replay.h"
 
 namespace povrayfc {
@@ -49,7 +50,7 @@ struct StoredSample {
     // BlockRecord::GroupOf(x, y), worked out once when the sample is recorded: the test of
     // a block's samples against a frame's changes reads it for every sample. It fills what
     // was padding.
-    std::uint32_t group : 29;
+    std::uint32_t group : 28;
     // A search for one of its rays' nearest intersections ended in a tie the order of the
     // scene's objects decided (tie_watch.h): whenever that order may differ, its tied
     // searches, packed after its segments, are run again (tie_replay.h).
@@ -61,6 +62,9 @@ struct StoredSample {
     // (their ids given to others) and miss those the tests pass now, so every frame in
     // which a unit changes runs them again (shadow_replay.h).
     std::uint32_t shadowStale : 1;
+    // It kept surface hits (surface_replay.h), packed after its shadow tests: where only
+    // their segments meet a change, they are run again.
+    std::uint32_t surfaceHits : 1;
     // Found clean in the frame stamped clearStamp (0: never, or traced since): its segments
     // of the bundle classes in the low BlockHulls::kClassBits bits of `clearance` (every
     // one of its segments in such a class was tested) missed that frame's changes by the
@@ -70,7 +74,7 @@ struct StoredSample {
     std::uint32_t clearStamp = 0;
     std::uint32_t clearance = 0;
 
-    StoredSample() : group(0), orderSensitive(0), shadowTests(0), shadowStale(0) {}
+    StoredSample() : group(0), orderSensitive(0), shadowTests(0), shadowStale(0), surfaceHits(0) {}
 };
 static_assert(sizeof(StoredSample) == 56, "StoredSample grew: the store's size per pixel counts it");
 
@@ -145,11 +149,11 @@ struct BlockRecord {
     }
     // The bytes of `packed` sample `s` holds from its firstByte: its segments, then when it
     // is order-sensitive its tied searches (tie_replay.h), then when it kept any its shadow
-    // tests (shadow_replay.h).
+    // tests (shadow_replay.h), then its surface hits (surface_replay.h).
     std::size_t SampleBytes(const StoredSample &s) const {
         if (s.segmentCount == StoredSample::kEverything) return 0;
-        const std::uint8_t *tests = ShadowTestsOf(s);
-        return std::size_t(tests - (packed.data() + s.firstByte)) + (s.shadowTests ? ShadowTestsBytes(tests) : 0);
+        const std::uint8_t *hits = SurfaceHitsOf(s);
+        return std::size_t(hits - (packed.data() + s.firstByte)) + (s.surfaceHits ? SurfaceHitsBytes(hits) : 0);
     }
     // An order-sensitive sample's tied searches (tie_replay.h).
     const std::uint8_t *TiedSearchesOf(const StoredSample &s) const {
@@ -160,6 +164,11 @@ struct BlockRecord {
     const std::uint8_t *ShadowTestsOf(const StoredSample &s) const {
         const std::uint8_t *ties = TiedSearchesOf(s);
         return s.orderSensitive ? ties + TiedSearchesBytes(ties) : ties;
+    }
+    // Where a sample's surface hits are (surface_replay.h): after its shadow tests.
+    const std::uint8_t *SurfaceHitsOf(const StoredSample &s) const {
+        const std::uint8_t *tests = ShadowTestsOf(s);
+        return s.shadowTests ? tests + ShadowTestsBytes(tests) : tests;
     }
     // Unpacks sample `s`'s segments into `segments` and their bundles into `fanOf` (room
     // for s.segmentCount each: UnpackScratch), and, when given, each one's offset in

@@ -53,12 +53,13 @@ struct ShadowTest {
 };
 
 // The test again, in the frame being rendered: implemented by the patch layer with POV-Ray's
-// own shadow test. Writes the colour it gives; false when it cannot be run as described, or
-// when the run left an object in the shadow caches.
+// own shadow test. Writes the colour it gives and whether it passed anything (its loop moved
+// its origin); false when it cannot be run as described, or when the run left an object in
+// the shadow caches.
 class ShadowReplayer {
   public:
     virtual ~ShadowReplayer() = default;
-    virtual bool Replay(const ShadowTest &test, float colourOut[3]) = 0;
+    virtual bool Replay(const ShadowTest &test, float colourOut[3], bool &passed) = 0;
 };
 
 // A sample keeps at most this many (the first it traced); the others' pieces are tested as
@@ -78,7 +79,8 @@ std::size_t UnpackShadowTests(const std::uint8_t *bytes, ShadowTest *tests);
 
 // Runs `tests` (as UnpackShadowTests gave them) again through `replayer` and says whether
 // each gave the colour it gave before, bit for bit; it stops at the first that did not.
-bool ShadowTestsHold(const ShadowTest *tests, std::size_t count, ShadowReplayer *replayer);
+// `passedNone`: no test passed anything in this frame.
+bool ShadowTestsHold(const ShadowTest *tests, std::size_t count, ShadowReplayer *replayer, bool &passedNone);
 
 }  // namespace povrayfc
 
