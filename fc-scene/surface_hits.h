@@ -46,7 +46,7 @@ bool SurfaceHitsReplayable(const pov::SceneData& scene);
 bool SurfaceSignature(pov::TraceThreadData *threadData, const pov::Ray& ray, bool found,
                       const pov::Intersection& isect, std::uint64_t& signature);
 
-// Right after Trace::TraceRay's search, when the sample keeps its hits (SurfaceHitWanted):
+// Right after Trace::TraceRay's search, when the sample keeps its hits (RecordRaySegment said so):
 // the hit, described and recorded. A ray inside an object is kept only when it is a camera
 // ray (run again, it gets the interiors its origin is in as a camera ray does); nor is one
 // with a spectral band, photon, radiosity, shadow or subsurface flag.

@@ -33,6 +33,7 @@ void FrameCoherence::Forget() {
     store_.reset();
     haveLast_ = false;
     policy_.Reset();
+    replayPolicy_.Reset();
 }
 
 std::size_t FrameCoherence::DefaultBudgetBytes() {
@@ -100,6 +101,7 @@ void FrameCoherence::BeginFrame(bool enabled, const FrameSetup &setup, const voi
     }
     plan_.store = store_.get();
     if (!plan_.store) plan_.mode = FramePlan::Mode::kIdle;
+    plan_.keepReplays = replayPolicy_.Keep();
     // Every stored block was sent to the front end when it was traced, and the front
     // end's image lives as long as the animation; but radiosity's pretrace draws its
     // coarse passes into that image every frame, over what the last frame left there.
@@ -244,6 +246,7 @@ void FrameCoherence::EndFrame(std::uint64_t raysTraced) {
         current_.replaySamplesTried = counters_.replaySamplesTried.load();
         current_.shadowSamplesKept = counters_.shadowSamplesKept.load();
         current_.surfaceSamplesKept = counters_.surfaceSamplesKept.load();
+        replayPolicy_.AfterFrame(current_.replaySamplesTried, current_.shadowSamplesKept + current_.surfaceSamplesKept);
         // Blocks this frame did not render missed its changes.
         if (store_) store_->ForgetUntouched();
         current_.storeBytes = store_ ? store_->MemoryBytes() : 0;

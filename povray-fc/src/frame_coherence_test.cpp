@@ -162,8 +162,7 @@ void TraceToy(const ToyScene &scene, double x, double y, float rgbft[5]) {
         TieWatch ties(d, best, &DescribeToySearch, &search);
         NearestBox(scene, o, d, best, hit);
     }
-    RecordRaySegment(o, d, hit ? best : 2e10, UnitOf(scene, hit));
-    if (SurfaceHitWanted()) {
+    if (RecordRaySegment(o, d, hit ? best : 2e10, UnitOf(scene, hit))) {
         SurfaceHit kept;
         std::copy(o, o + 3, kept.origin);
         std::copy(d, d + 3, kept.direction);

@@ -24,6 +24,7 @@
 #include "povrayfc/frame_setup.h"
 #include "povrayfc/frame_stats.h"
 #include "povrayfc/recording_policy.h"
+#include "povrayfc/replay_policy.h"
 #include "povrayfc/sample_store.h"
 #include "povrayfc/scene_signature.h"
 #include "povrayfc/unit_ids.h"
@@ -83,6 +84,7 @@ class FrameCoherence {
     DirtyMask tracedMask_;
     FramePlan plan_;
     RecordingPolicy policy_;
+    ReplayPolicy replayPolicy_;
     bool wastedIfFull_ = false;  // this frame's recording pays off only if it is coherent
 
     bool enabled_ = false;

@@ -85,6 +85,9 @@ struct FramePlan {
     // shape, so an order-sensitive sample is kept only when its tied searches, run again,
     // find what they found (tie_watch.h, tie_replay.h).
     bool orderChanged = false;
+    // Samples traced again keep their surface hits and every shadow test, to be run again
+    // (ReplayPolicy: not while that does not pay).
+    bool keepReplays = true;
     // This frame's stamp among the frames whose changes samples keep clearances from (0:
     // none is kept or trusted this frame), and how far the changes moved since each.
     std::uint32_t changeStamp = 0;

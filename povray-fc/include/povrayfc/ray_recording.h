@@ -69,7 +69,6 @@ class SampleRecorder {
         tiesComplete_ = true;
         shadowTests_.clear();
         surfaceHits_.clear();
-        lastStored_ = false;
     }
     // Whether the samples keep their shadow tests that passed something letting light
     // through, to run them again (shadow_replay.h): only where they can be run again.
@@ -95,10 +94,10 @@ class SampleRecorder {
     // Whether this sample keeps the first kMaxSurfaceHits of its rays' hits, to run them
     // again (surface_replay.h): set for each sample, where they can be run again.
     void KeepSurfaceHits(bool keep) { keepSurfaceHits_ = keep; }
-    bool KeepsSurfaceHits() const { return keepSurfaceHits_ && surfaceHits_.size() < kMaxSurfaceHits; }
-    // The hit of the ray Add recorded last, when it was stored (its segment is the last).
+    // The hit of the ray Add recorded last, when Add said it is wanted (its segment is the
+    // last one).
     void AddSurfaceHit(SurfaceHit hit) {
-        if (!lastStored_ || surfaceHits_.size() >= kMaxSurfaceHits) return;
+        if (surfaceHits_.size() >= kMaxSurfaceHits || Count() == 0) return;
         hit.segment = std::uint32_t(Count() - 1);
         surfaceHits_.push_back(hit);
     }
@@ -114,30 +113,29 @@ class SampleRecorder {
         return true;
     }
     // A ray that ended on the frame's unit `unit` (the index the parser wrote into what it
-    // hit, or kUnitNothing).
-    void Add(const double origin[3], const double direction[3], double tmax, std::uint32_t unit) {
-        lastStored_ = false;
+    // hit, or kUnitNothing). Returns whether the sample keeps the ray's hit: then
+    // AddSurfaceHit is called with it before anything else is recorded.
+    bool Add(const double origin[3], const double direction[3], double tmax, std::uint32_t unit) {
         // A ray that cannot be placed: any change must re-trace it (and it must not become
         // the block's camera apex).
         if (!(std::isfinite(origin[0]) && std::isfinite(origin[1]) && std::isfinite(origin[2]))) {
             everything_ = true;
-            return;
+            return false;
         }
         const std::uint8_t fan = apexes_->OriginFan(origin);
-        if (!Store(origin, direction, tmax, UnitId(unit), fan)) return;
-        lastStored_ = true;
+        if (!Store(origin, direction, tmax, UnitId(unit), fan)) return false;
         // POV-Ray records a ray when it found what the ray hits, and lights a point
         // (its shadow tests) before it follows the reflected and refracted rays: shadow
         // rays after a ray that did not start at the camera leave the points such rays
         // hit. (Which bundle a segment joins never changes a pixel, only how tight the
         // cones are.)
         deep_ |= fan == FanApexes::kLoose;
+        return keepSurfaceHits_ && surfaceHits_.size() < kMaxSurfaceHits;
     }
     // A shadow ray towards the light point `aim` (reaching it, or stopped short by tmax).
     // `opaqueBlocker`: an opaque surface of `unit` ended the test (kOpaqueBlocker).
     void AddAimed(const double origin[3], const double direction[3], double tmax, const double aim[3],
                   std::uint32_t unit, bool opaqueBlocker = false) {
-        lastStored_ = false;
         // A light point that is no point must not become a bundle's apex.
         if (!(std::isfinite(aim[0]) && std::isfinite(aim[1]) && std::isfinite(aim[2]))) {
             everything_ = true;
@@ -255,7 +253,6 @@ class SampleRecorder {
     std::vector<ShadowTest> shadowTests_;  // the sample's, in the order they ran
     bool keepSurfaceHits_ = false;
     std::vector<SurfaceHit> surfaceHits_;  // the sample's, in the order they ran
-    bool lastStored_ = false;  // the last Add stored its segment (the last one)
 };
 
 namespace detail {
@@ -264,15 +261,13 @@ extern thread_local SampleRecorder *tlsRecorder;
 
 // Adds the segment origin + t*direction, t in [0, tmax], to the sample being recorded on
 // this thread. tmax may be huge or infinite (a ray that hit nothing); `unit` is the index
-// the parser wrote into the object the ray ended on, or kUnitNothing.
-inline void RecordRaySegment(const double origin[3], const double direction[3], double tmax, std::uint32_t unit) {
-    if (detail::tlsRecorder) detail::tlsRecorder->Add(origin, direction, tmax, unit);
+// the parser wrote into the object the ray ended on, or kUnitNothing. Returns whether the
+// sample keeps the ray's hit (surface_replay.h): then the patch layer describes it to
+// RecordSurfaceHit at once.
+inline bool RecordRaySegment(const double origin[3], const double direction[3], double tmax, std::uint32_t unit) {
+    return detail::tlsRecorder && detail::tlsRecorder->Add(origin, direction, tmax, unit);
 }
 
-// Whether the ray RecordRaySegment just recorded should be described as a surface hit
-// (surface_replay.h): then the patch layer calls RecordSurfaceHit. Costs one thread-local
-// test when the thread is not recording.
-inline bool SurfaceHitWanted() { return detail::tlsRecorder && detail::tlsRecorder->KeepsSurfaceHits(); }
 inline void RecordSurfaceHit(const SurfaceHit &hit) {
     if (detail::tlsRecorder) detail::tlsRecorder->AddSurfaceHit(hit);
 }

@@ -34,6 +34,7 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <cstring>
 #include <vector>
 
 namespace povrayfc {
@@ -70,17 +71,18 @@ std::size_t SurfaceHitsBytes(const std::uint8_t *bytes);
 // Reads them back into `hits` (room for kMaxSurfaceHits); returns how many there are.
 std::size_t UnpackSurfaceHits(const std::uint8_t *bytes, SurfaceHit *hits);
 
-// A signature's running hash: FNV-1a over the bytes it is given (a change of any one byte
-// changes it; the patch layer feeds it every value a hit's shading reads).
+// A signature's running hash, FNV-1a over 64-bit words: each value (8 bytes at most, as its
+// bits) is one word, xored in and multiplied by an odd prime, both one-to-one, so a change
+// of any one value changes the hash. The patch layer feeds it every value a hit's shading
+// reads.
 class SignatureHash {
   public:
-    void Add(const void *data, std::size_t size) {
-        const unsigned char *bytes = static_cast<const unsigned char *>(data);
-        for (std::size_t i = 0; i < size; ++i) value_ = (value_ ^ bytes[i]) * 0x100000001b3ull;
-    }
     template <class T>
     void Add(const T &value) {
-        Add(&value, sizeof value);
+        static_assert(sizeof(T) <= 8, "one value at a time");
+        std::uint64_t word = 0;
+        std::memcpy(&word, &value, sizeof value);
+        value_ = (value_ ^ word) * 0x100000001b3ull;
     }
     std::uint64_t Value() const { return value_; }
 
