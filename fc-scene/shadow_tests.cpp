@@ -58,7 +58,7 @@ void DescribeKeptShadowTest(ShadowSegmentRecord& record, const pov::LightSource&
 	record.Describe(std::uint16_t(light.index), RayFlagBits(ray), std::uint8_t(ticket.traceLevel));
 }
 
-bool TraceShadowReplayer::Replay(const ShadowTest& test, float colourOut[3], bool& passed)
+bool TraceShadowReplayer::Replay(const ShadowTest& test, float colourOut[3], ShadowRun& run)
 {
 	if(test.light >= scene_.lightSources.size())
 		return false;
@@ -73,11 +73,13 @@ bool TraceShadowReplayer::Replay(const ShadowTest& test, float colourOut[3], boo
 	pov::RGBColour colour(test.colourIn[0], test.colourIn[1], test.colourIn[2]);
 	double depth = test.depth;
 	bool cached;
+	// The test's ShadowSegmentRecord writes what answered it into `run` (it records nothing now).
+	detail::tlsShadowRun = &run;
 	trace_.ReplayPointLightShadowRay(light, depth, ray, colour, ticket, cached);
-	if(cached)
-		return false;
+	detail::tlsShadowRun = nullptr;
+	run.cached = cached;
 	// The loop takes off what it passes from the depth left (by more than SHADOW_TOLERANCE).
-	passed = depth != test.depth;
+	run.passed = depth != test.depth;
 	colourOut[0] = colour.red();
 	colourOut[1] = colour.green();
 	colourOut[2] = colour.blue();

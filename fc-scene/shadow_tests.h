@@ -52,7 +52,7 @@ class TraceShadowReplayer : public ShadowReplayer
 {
 	public:
 		TraceShadowReplayer(pov::Trace& trace, const pov::SceneData& scene) : trace_(trace), scene_(scene) { }
-		virtual bool Replay(const ShadowTest& test, float colourOut[3], bool& passed);
+		virtual bool Replay(const ShadowTest& test, float colourOut[3], ShadowRun& run);
 	private:
 		pov::Trace& trace_;
 		const pov::SceneData& scene_;

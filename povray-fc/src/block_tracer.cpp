@@ -206,16 +206,34 @@ bool RenameHitUnits(const StoredSample &s, BlockRecord &record, const SurfaceHit
     return true;
 }
 
-// Whether each of `tests` is one piece that ended on nothing (it passed nothing and nothing
-// blocked it).
-bool OnePieceEach(const StoredSample &s, const BlockRecord &record, const ShadowTest *tests, std::size_t count) {
+// Whether `tests`, run again with `runs`, left pieces that are the new frame's: each is one
+// piece and passed nothing then and now, and it reached the light both times or an opaque
+// surface answered it both times. Then each answered piece is made to name the unit that
+// answers it now (its id this frame), and the sample holds the new frame's segments only.
+bool TestsAsTraced(const StoredSample &s, BlockRecord &record, const FramePlan &plan, const ShadowTest *tests,
+                   const ShadowRun *runs, std::size_t count) {
     for (std::size_t t = 0; t < count; ++t)
-        if (tests[t].segmentCount != 1) return false;
+        if (tests[t].segmentCount != 1 || runs[t].passed) return false;
     thread_local UnpackScratch scratch;
     scratch.Fit(s.segmentCount);
-    if (!record.Unpack(s, scratch.segments.data(), scratch.fans.data())) return false;
-    for (std::size_t t = 0; t < count; ++t)
-        if (scratch.segments[tests[t].firstSegment].unit != Segment::kNoUnit) return false;
+    if (!record.Unpack(s, scratch.segments.data(), scratch.fans.data(), scratch.headers.data())) return false;
+    std::uint32_t ids[kMaxShadowTests];
+    for (std::size_t t = 0; t < count; ++t) {
+        const std::uint32_t unit = scratch.segments[tests[t].firstSegment].unit;
+        if (unit == Segment::kNoUnit) {
+            if (runs[t].blocker != kUnitNothing) return false;
+            continue;
+        }
+        if (!(unit & Segment::kOpaqueBlocker) || runs[t].blocker == kUnitNothing) return false;
+        if (!SegmentUnitOf(runs[t].blocker, plan.unitIds, plan.unitCount, ids[t]) || ids[t] == Segment::kNoUnit) return false;
+    }
+    for (std::size_t t = 0; t < count; ++t) {
+        if (scratch.segments[tests[t].firstSegment].unit == Segment::kNoUnit) continue;
+        if (!RewritePackedUnit(record.packed.data() + scratch.headers[tests[t].firstSegment], ids[t] | Segment::kOpaqueBlocker))
+            return false;
+        record.unitMask |= UnitMaskBit(ids[t]);
+        record.groupIndex.unitMask[s.group] |= UnitMaskBit(ids[t]);
+    }
     return true;
 }
 
@@ -229,7 +247,8 @@ enum class KeptBy { kNothing, kSurfaceHits, kShadowTestsAsTraced, kShadowTests }
 // hits is as good as traced, one kept by its shadow tests is stale. `units`, `blocked` and
 // `reach` say which tests the frame asks for, as for any sample.
 KeptBy KeptByReplays(const StoredSample &s, BlockRecord &record, const FramePlan &plan, bool units, bool blocked,
-                     const BlockHulls *reach, SurfaceReplayer *surfaceReplayer, ShadowReplayer *shadowReplayer) {
+                     const BlockHulls *reach, SurfaceReplayer *surfaceReplayer, ShadowReplayer *shadowReplayer,
+                     bool shadowCachesMatter) {
     if (s.segmentCount == StoredSample::kEverything) return KeptBy::kNothing;
     SurfaceHit hits[kMaxSurfaceHits];
     const std::size_t hitCount =
@@ -256,12 +275,10 @@ KeptBy KeptByReplays(const StoredSample &s, BlockRecord &record, const FramePlan
     }
     if (!CleanBeside(s, record, plan, units, blocked, reach, skip.data())) return KeptBy::kNothing;
     if (hitCount > 0 && !SurfaceHitsHold(hits, hitCount, plan, surfaceReplayer, hitUnits)) return KeptBy::kNothing;
-    bool passedNone;
-    if (!ShadowTestsHold(tests, testCount, shadowReplayer, passedNone)) return KeptBy::kNothing;
+    ShadowRun runs[kMaxShadowTests];
+    if (!ShadowTestsHold(tests, testCount, shadowReplayer, shadowCachesMatter, runs)) return KeptBy::kNothing;
     if (hitCount > 0 && !RenameHitUnits(s, record, hits, hitCount, hitUnits)) return KeptBy::kNothing;
-    // Tests that passed nothing then and now, each one piece to the light: those pieces are
-    // the new frame's, as a hit's segment is.
-    return passedNone && OnePieceEach(s, record, tests, testCount) ? KeptBy::kShadowTestsAsTraced : KeptBy::kShadowTests;
+    return TestsAsTraced(s, record, plan, tests, runs, testCount) ? KeptBy::kShadowTestsAsTraced : KeptBy::kShadowTests;
 }
 
 // A clearance (>= 0, rounded down to a float whose low mantissa bits are cleared) and the
@@ -417,7 +434,7 @@ bool BlockTracer::Begin(std::uint32_t serial, int left, int top, int right, int 
                     ++replayTried;
                     const KeptBy kept = KeptByReplays(s, *old_, plan, units, blocked,
                                                       groupReaches_[g] ? &groupReach_[g] : nullptr, surfaceReplayer_,
-                                                      shadowReplayer_);
+                                                      shadowReplayer_, shadowCachesMatter_);
                     dirty = kept == KeptBy::kNothing;
                     if (kept == KeptBy::kSurfaceHits) ++surfaceKept;
                     if (kept == KeptBy::kShadowTestsAsTraced) {

@@ -95,7 +95,8 @@ bool toyKeepsShadowTests = true, toyCacheHeld = false;
 // The toy's shadow loop straight up from `origin`, as POV-Ray's: to the nearest surface
 // farther than a tolerance; glass scales `light` and the loop goes on from that surface, an
 // opaque box ends it dark. With `record`, tells it what it passed and what blocked it.
-void ToyShadowLoop(const ToyScene &scene, double origin[3], double &depth, float light[3], ShadowSegmentRecord *record) {
+void ToyShadowLoop(const ToyScene &scene, double origin[3], double &depth, float light[3], ShadowSegmentRecord *record,
+                   std::uint32_t *blockedBy = nullptr) {
     const double up[3] = {0, 1, 0};
     for (;;) {
         const ToyBox *nearest = nullptr;
@@ -111,6 +112,7 @@ void ToyShadowLoop(const ToyScene &scene, double origin[3], double &depth, float
         if (nearest->tint <= 0.0f) {
             light[0] = light[1] = light[2] = 0.0f;
             if (record) record->BlockedAt(at, unit, true);
+            if (blockedBy) *blockedBy = unit;
             return;
         }
         if (record) record->PassedAt(at, unit);
@@ -231,13 +233,15 @@ class ToyReplayer : public TieReplayer {
 class ToyShadowReplayer : public ShadowReplayer {
   public:
     explicit ToyShadowReplayer(const ToyScene &scene) : scene_(scene) {}
-    bool Replay(const ShadowTest &test, float colourOut[3], bool &passed) override {
+    bool Replay(const ShadowTest &test, float colourOut[3], ShadowRun &run) override {
         ++runs;
         double origin[3] = {test.origin[0], test.origin[1], test.origin[2]};
         double depth = test.depth;
         std::copy(test.colourIn, test.colourIn + 3, colourOut);
-        ToyShadowLoop(scene_, origin, depth, colourOut, nullptr);
-        passed = depth != test.depth;
+        ToyShadowLoop(scene_, origin, depth, colourOut, nullptr, &run.blocker);
+        run.passed = depth != test.depth;
+        // As POV-Ray's loop, it caches an opaque blocker it met before anything it passed.
+        run.cached = run.blocker != kUnitNothing && !run.passed;
         if (lies) std::copy(test.colourOut, test.colourOut + 3, colourOut);
         return true;
     }
@@ -273,6 +277,9 @@ class ToySurfaceReplayer : public SurfaceReplayer {
 // Whether RenderFc gives its tracer replayers (as the patched trace task does), and among
 // them one for surface hits.
 bool toyReplays = true, toySurfaceReplays = true;
+// Whether the toy's shadow caches may hold a filtering object (SetShadowReplayer): where
+// not, tests an opaque box answered are kept too.
+bool toyShadowCachesMatter = true;
 
 using Image = std::vector<float>;  // 5 floats a pixel
 
@@ -376,7 +383,7 @@ FcResult RenderFc(const ToyScene &scene, int frame, SceneEffects effects = {}, s
     ToySurfaceReplayer surfaceReplayer(scene);
     if (toyReplays) {
         tracer.SetTieReplayer(&replayer);
-        tracer.SetShadowReplayer(&shadowReplayer);
+        tracer.SetShadowReplayer(&shadowReplayer, toyShadowCachesMatter);
         if (toySurfaceReplays) tracer.SetSurfaceReplayer(&surfaceReplayer);
     }
     std::uint32_t serial = 0;
@@ -428,6 +435,7 @@ class FrameCoherenceRun : public ::testing::Test {
     void SetUp() override {
         toyReplays = true;
         toySurfaceReplays = true;
+        toyShadowCachesMatter = true;
         ToySurfaceReplayer::lies = false;
         toyKeepsShadowTests = true;
         toyCacheHeld = false;
@@ -1312,11 +1320,11 @@ namespace {
 // (which stays at z = 0) with colour `id`, and a blocker above that face's front at x =
 // blockerX (its shadow falls on the face when it is over it). Shadow tests are the loop
 // (ShadowSegmentRecord), from just in front of the surface hit.
-ToyScene Growing(double width, std::uint64_t id = 2, double blockerX = 40) {
+ToyScene Growing(double width, std::uint64_t id = 2, double blockerX = 40, double blockerWidth = 1) {
     ToyScene s = Frame(1);
     s.boxes[1].box.hi.x = 1 + width;
     s.boxes[1].id = id;
-    s.boxes.push_back({9, Box{Vec3{blockerX, 6, -0.5}, Vec3{blockerX + 1, 6.5, 0.5}}});
+    s.boxes.push_back({9, Box{Vec3{blockerX, 6, -0.5}, Vec3{blockerX + blockerWidth, 6.5, 0.5}}});
     s.glassShadows = true;
     return s;
 }
@@ -1377,6 +1385,43 @@ TEST_F(FrameCoherenceRun, AShadowTestThatPassesSomethingNewIsRunAgainWhenThatCha
     // glass then takes a tint (its appearance alone: no hull, only segments that ended on
     // it), those samples must run their tests again.
     RenderAllExact({Growing(2.5), Growing(3.5), GrowingUnderGlass(4.5, 30, 1.0f), GrowingUnderGlass(4.5, 31, 0.5f)});
+}
+
+TEST_F(FrameCoherenceRun, AShadowTestAnOpaqueBoxAnsweredIsKeptWhileABoxStillAnswersIt) {
+    // Where the shadow caches hold only opaque surfaces, a sample traced again keeps the
+    // tests an opaque box answered too: the blocker above the face grows, and the samples
+    // in its old shadow, run again, are still dark. Their piece then names the blocker's new
+    // id: when the blocker goes (nothing new appears; only what ended on its id knows), they
+    // are traced and lit.
+    toyShadowCachesMatter = false;
+    const std::vector<ToyScene> frames = {Growing(4.5, 2, 2, 1), Growing(4.5, 2, 2, 1.5), Growing(4.5, 2, 2, 2),
+                                          Growing(4.5, 2, 40, 1)};
+    std::uint64_t kept = 0;
+    for (std::size_t f = 0; f < frames.size(); ++f) {
+        const FcResult r = RenderFc(frames[f], int(f) + 1);
+        EXPECT_EQ(r.image, RenderFull(frames[f])) << "frame " << f + 1;
+        if (f == 2) kept = FrameCoherence::Get().LastStats().shadowSamplesKept;
+    }
+    EXPECT_GT(kept, 0u);
+    // Where a filtering object may be cached, they are not kept.
+    SetUp();
+    RenderAllExact({frames[0], frames[1], frames[2]});
+    EXPECT_EQ(FrameCoherence::Get().LastStats().shadowSamplesKept, 0u);
+}
+
+TEST_F(FrameCoherenceRun, AShadowTestThatWouldLeaveABlockerCachedIsNotKeptWhereCachesMatter) {
+    // Under the glass, a roof: the tests pass the glass and end dark. The roof comes down
+    // below the glass: run again, each test ends dark as before, but on the roof first,
+    // which POV-Ray would cache (the sample's next test would try it first): where the
+    // caches may hold a filtering object, none is kept.
+    auto roofed = [](double roofY) {
+        ToyScene s = UnderGlass(2, 20);
+        s.boxes.push_back({40, Box{Vec3{0, roofY, -20}, Vec3{10, roofY + 1, 20}}});
+        return s;
+    };
+    RenderAllExact({roofed(30), roofed(15)});
+    EXPECT_GT(FrameCoherence::Get().LastStats().replaySamplesTried, 0u);
+    EXPECT_EQ(FrameCoherence::Get().LastStats().shadowSamplesKept, 0u);
 }
 
 TEST_F(FrameCoherenceRun, ASampleWhoseShadowTestMeetsAChangeIsTracedWhateverItsHitsFind) {

@@ -7,6 +7,7 @@ namespace detail {
 
 thread_local SampleRecorder *tlsRecorder = nullptr;
 thread_local TieWatch *tlsTieWatch = nullptr;
+thread_local ShadowRun *tlsShadowRun = nullptr;
 
 }  // namespace detail
 }  // namespace povrayfc

@@ -43,6 +43,7 @@ class BlockTracer {
         shadowReplayer_ = replayer;
         recorder_.KeepShadowTests(replayer != nullptr);
         recorder_.ShadowCachesMatter(cachesMatter);
+        shadowCachesMatter_ = cachesMatter;
     }
     // Runs surface hits again for this thread (surface_replay.h); with one, a sample traced
     // again because a change reached it keeps its first hits.
@@ -108,6 +109,7 @@ class BlockTracer {
     TieReplayer *tieReplayer_ = nullptr;
     ShadowReplayer *shadowReplayer_ = nullptr;
     SurfaceReplayer *surfaceReplayer_ = nullptr;
+    bool shadowCachesMatter_ = true;
     bool active_ = false;   // this block is under fc (mode != kIdle)
     bool endedActive_ = false;  // End() ended a block under fc (SendOnlyChanged)
     bool record_ = false;   // mode kRecord: samples and segments are kept

@@ -257,6 +257,9 @@ class SampleRecorder {
 
 namespace detail {
 extern thread_local SampleRecorder *tlsRecorder;
+// While a kept shadow test is run again (the thread records nothing then): where its
+// ShadowSegmentRecord writes what answered it.
+extern thread_local ShadowRun *tlsShadowRun;
 }  // namespace detail
 
 // Adds the segment origin + t*direction, t in [0, tmax], to the sample being recorded on
@@ -304,14 +307,21 @@ class ShadowSegmentRecord {
         }
     }
     ~ShadowSegmentRecord() {
-        if (!recorder_) return;
+        if (!recorder_) {
+            // A test run again (shadow_replay.h): what answered it.
+            if (detail::tlsShadowRun && blocked_ && opaque_) detail::tlsShadowRun->blocker = blocker_;
+            return;
+        }
         if (!blocked_ || !opaque_ || blocker_ == kUnitNothing) {
             recorder_->AddAimed(origin_, direction_, blocked_ ? blockedAt_ : depth_, aim_, blocker_);
         } else {
             if (!passed_ && recorder_->Count() >= before_) recorder_->KeepFirst(before_);
             recorder_->AddAimed(origin_, direction_, depth_ - projected_, aim_, blocker_, true);
         }
-        if (described_ && !(cacheHeld_ && recorder_->ShadowCachesMatterToTests()) && (passed_ || (every_ && !blocked_)))
+        // Where only opaque surfaces are cached, a test an opaque surface answered is kept too:
+        // run again, it must be answered again (its one piece then names what answers it now).
+        const bool cachesMatter = recorder_->ShadowCachesMatterToTests();
+        if (described_ && !(cacheHeld_ && cachesMatter) && (passed_ || (every_ && (!blocked_ || (opaque_ && !cachesMatter)))))
             KeepTest();
     }
     ShadowSegmentRecord(const ShadowSegmentRecord &) = delete;

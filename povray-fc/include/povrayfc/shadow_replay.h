@@ -52,14 +52,22 @@ struct ShadowTest {
     std::uint16_t segmentCount;
 };
 
+// What a test run again did besides the colour it gave.
+struct ShadowRun {
+    bool passed = false;  // it passed something (its loop moved its origin)
+    bool cached = false;  // it left an object in the shadow caches
+    // The parser's unit index of the opaque surface that answered it (kUnitNothing: none),
+    // as its ShadowSegmentRecord::BlockedAt was told.
+    std::uint32_t blocker = 0xffffffffu;
+};
+
 // The test again, in the frame being rendered: implemented by the patch layer with POV-Ray's
-// own shadow test. Writes the colour it gives and whether it passed anything (its loop moved
-// its origin); false when it cannot be run as described, or when the run left an object in
-// the shadow caches.
+// own shadow test, its shadow caches empty. Writes the colour it gives and what else it did;
+// false when it cannot be run as described.
 class ShadowReplayer {
   public:
     virtual ~ShadowReplayer() = default;
-    virtual bool Replay(const ShadowTest &test, float colourOut[3], bool &passed) = 0;
+    virtual bool Replay(const ShadowTest &test, float colourOut[3], ShadowRun &run) = 0;
 };
 
 // A sample keeps at most this many (the first it traced); the others' pieces are tested as
@@ -78,9 +86,11 @@ std::size_t ShadowTestsBytes(const std::uint8_t *bytes);
 std::size_t UnpackShadowTests(const std::uint8_t *bytes, ShadowTest *tests);
 
 // Runs `tests` (as UnpackShadowTests gave them) again through `replayer` and says whether
-// each gave the colour it gave before, bit for bit; it stops at the first that did not.
-// `passedNone`: no test passed anything in this frame.
-bool ShadowTestsHold(const ShadowTest *tests, std::size_t count, ShadowReplayer *replayer, bool &passedNone);
+// each gave the colour it gave before, bit for bit, and (when `cachesMatter`) left nothing
+// in the shadow caches; it stops at the first that did not. `runs` (room for count): what
+// each did.
+bool ShadowTestsHold(const ShadowTest *tests, std::size_t count, ShadowReplayer *replayer, bool cachesMatter,
+                     ShadowRun *runs);
 
 }  // namespace povrayfc
 
