@@ -1,6 +1,6 @@
 // fc-scene: POV-Ray's flags of a ray as frame coherence keeps them, and made again, so that
-// a search or a shadow test kept with a sample can be run again on a ray with the same flags
-// (tie_searches.h, shadow_tests.h).
+// a search, a shadow test or a surface hit kept with a sample can be run again on a ray with the same flags
+// (tie_searches.h, shadow_tests.h, surface_hits.h).
 #ifndef POVRAYFC_SCENE_RAY_FLAGS_H
 #define POVRAYFC_SCENE_RAY_FLAGS_H
 
