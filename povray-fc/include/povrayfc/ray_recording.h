@@ -292,8 +292,11 @@ inline void RecordSurfaceHit(const SurfaceHit &hit) {
 // test that passed none keeps its one segment alone.
 //
 // A test that passed something and started with empty shadow caches is also kept whole, to
-// be run again (LightColour, CacheHeld, Describe; shadow_replay.h).
-// Costs one thread-local test when the thread is not recording.
+// be run again (LightColour, CacheHeld, Describe; shadow_replay.h); in a sample traced
+// again (SampleRecorder::KeepEveryShadowTest), so is one that passed nothing, and, where
+// only opaque surfaces are cached, one an opaque surface answered or that started with a
+// cached object. While a kept test is run again, it writes what answered it to
+// detail::tlsShadowRun. Costs one thread-local test when the thread is not recording.
 class ShadowSegmentRecord {
   public:
     // `origin` and `depth` (the distance to the light) are the shadow loop's own variables.

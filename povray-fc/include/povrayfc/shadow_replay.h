@@ -15,11 +15,15 @@
 // (Trace::TracePointLightShadowRay), run again on those inputs in the new frame, gives what
 // the test would give there, and when that is the colour it gave before, everything after it
 // is what it was, by induction the whole trace, and so the colour. The test also reads and
-// writes the thread's shadow caches (the object that last shadowed fully, per light): a test
-// is kept only when the caches held nothing as it started (the sample's earlier tests, clean
-// or run again, then leave them as empty in the new frame), and is run again with them
-// empty; a run that would leave an object in them (it now met an opaque surface before any
-// transparent one) does not hold. The patch layer keeps the other thread state a shadow test
+// writes the thread's shadow caches (the object that last shadowed fully, per light): where
+// a filtering object may be cached, a test is kept only when the caches held nothing as it
+// started (the sample's earlier tests, clean or run again, then leave them as empty in the
+// new frame), and is run again with them empty; a run that would leave an object in them
+// (it now met an opaque surface before any transparent one) does not hold. Where nothing
+// lets light through, only opaque surfaces are cached, and a cached one that does not block
+// leaves the test to the loop (patch 0201): what the caches hold changes no test's colour,
+// so there tests that started with a cached object, and tests an opaque surface answered,
+// are kept too (ray_recording.h). The patch layer keeps the other thread state a shadow test
 // can read out of it: scenes with media, fog, photons, radiosity, subsurface scattering or
 // isosurfaces (whose root finder keeps a cache across rays) keep no shadow tests
 // (fc-scene/shadow_tests.h).
@@ -27,7 +31,10 @@
 // The kept sample's pieces of the test stay those of the old frame: they lie on the same
 // line from the same origin to the light, split where the old surfaces were, so a later
 // change anywhere on the test's way still meets one of them, and a later change of the
-// objects it passed still ends one of them, which runs the test again.
+// objects it passed still ends one of them, which runs the test again. Where every test run
+// again is one piece that passed nothing then and now and ended alike (at the light, or on
+// an opaque surface, renamed to the one that answers now), its pieces are the new frame's
+// and the sample is not stale (block_tracer.cpp, TestsAsTraced).
 #ifndef POVRAYFC_SHADOW_REPLAY_H
 #define POVRAYFC_SHADOW_REPLAY_H
 
