@@ -176,10 +176,11 @@ bool CleanBeside(const StoredSample &s, BlockRecord &record, const FramePlan &pl
 // The surface hits a sample kept, run again through `replayer`: whether each found what it
 // found (surface_replay.h), and the ids (this frame's) of the units they hit now.
 bool SurfaceHitsHold(const SurfaceHit *hits, std::size_t count, const FramePlan &plan, SurfaceReplayer *replayer,
-                     std::uint32_t *units) {
+                     std::uint32_t *units, std::uint64_t &runs) {
     for (std::size_t h = 0; h < count; ++h) {
         std::uint64_t signature;
         std::uint32_t unitIndex;
+        ++runs;
         if (!replayer->Replay(hits[h], signature, unitIndex) || signature != hits[h].signature) return false;
         if (!SegmentUnitOf(unitIndex, plan.unitIds, plan.unitCount, units[h])) return false;
     }
@@ -248,7 +249,7 @@ enum class KeptBy { kNothing, kSurfaceHits, kShadowTestsAsTraced, kShadowTests }
 // `reach` say which tests the frame asks for, as for any sample.
 KeptBy KeptByReplays(const StoredSample &s, BlockRecord &record, const FramePlan &plan, bool units, bool blocked,
                      const BlockHulls *reach, SurfaceReplayer *surfaceReplayer, ShadowReplayer *shadowReplayer,
-                     bool shadowCachesMatter) {
+                     bool shadowCachesMatter, std::uint64_t &runs) {
     if (s.segmentCount == StoredSample::kEverything) return KeptBy::kNothing;
     SurfaceHit hits[kMaxSurfaceHits];
     const std::size_t hitCount =
@@ -265,7 +266,7 @@ KeptBy KeptByReplays(const StoredSample &s, BlockRecord &record, const FramePlan
     std::uint32_t hitUnits[kMaxSurfaceHits];
     // A stale sample runs its shadow tests whenever it is tried (shadow_replay.h).
     if (hitCount > 0 && !s.shadowStale && CleanBeside(s, record, plan, units, blocked, reach, skip.data())) {
-        if (!SurfaceHitsHold(hits, hitCount, plan, surfaceReplayer, hitUnits)) return KeptBy::kNothing;
+        if (!SurfaceHitsHold(hits, hitCount, plan, surfaceReplayer, hitUnits, runs)) return KeptBy::kNothing;
         return RenameHitUnits(s, record, hits, hitCount, hitUnits) ? KeptBy::kSurfaceHits : KeptBy::kNothing;
     }
     if (testCount == 0) return KeptBy::kNothing;
@@ -274,11 +275,12 @@ KeptBy KeptByReplays(const StoredSample &s, BlockRecord &record, const FramePlan
         std::fill_n(skip.begin() + tests[t].firstSegment, tests[t].segmentCount, std::uint8_t(1));
     }
     if (!CleanBeside(s, record, plan, units, blocked, reach, skip.data())) return KeptBy::kNothing;
-    if (hitCount > 0 && !SurfaceHitsHold(hits, hitCount, plan, surfaceReplayer, hitUnits)) return KeptBy::kNothing;
-    ShadowRun runs[kMaxShadowTests];
-    if (!ShadowTestsHold(tests, testCount, shadowReplayer, shadowCachesMatter, runs)) return KeptBy::kNothing;
+    if (hitCount > 0 && !SurfaceHitsHold(hits, hitCount, plan, surfaceReplayer, hitUnits, runs)) return KeptBy::kNothing;
+    ShadowRun testRuns[kMaxShadowTests];
+    runs += testCount;
+    if (!ShadowTestsHold(tests, testCount, shadowReplayer, shadowCachesMatter, testRuns)) return KeptBy::kNothing;
     if (hitCount > 0 && !RenameHitUnits(s, record, hits, hitCount, hitUnits)) return KeptBy::kNothing;
-    return TestsAsTraced(s, record, plan, tests, runs, testCount) ? KeptBy::kShadowTestsAsTraced : KeptBy::kShadowTests;
+    return TestsAsTraced(s, record, plan, tests, testRuns, testCount) ? KeptBy::kShadowTestsAsTraced : KeptBy::kShadowTests;
 }
 
 // A clearance (>= 0, rounded down to a float whose low mantissa bits are cleared) and the
@@ -395,7 +397,7 @@ bool BlockTracer::Begin(std::uint32_t serial, int left, int top, int right, int 
         const GroupIndex &index = old_->groupIndex;
         oldDirty_.assign(n, 0);
         std::uint64_t tested = 0, cleared = 0, tiedReplayed = 0, tiedKept = 0, replayTried = 0, shadowKept = 0,
-                      surfaceKept = 0;
+                      surfaceKept = 0, replayRuns = 0, keptSegments = 0;
         for (std::size_t g = 0; g < groupReach_.size(); ++g) {
             const std::uint8_t flags = index.flags[g];
             const bool everything = (flags & GroupIndex::kEverything) != 0;
@@ -434,8 +436,9 @@ bool BlockTracer::Begin(std::uint32_t serial, int left, int top, int right, int 
                     ++replayTried;
                     const KeptBy kept = KeptByReplays(s, *old_, plan, units, blocked,
                                                       groupReaches_[g] ? &groupReach_[g] : nullptr, surfaceReplayer_,
-                                                      shadowReplayer_, shadowCachesMatter_);
+                                                      shadowReplayer_, shadowCachesMatter_, replayRuns);
                     dirty = kept == KeptBy::kNothing;
+                    if (!dirty) keptSegments += s.segmentCount;
                     if (kept == KeptBy::kSurfaceHits) ++surfaceKept;
                     if (kept == KeptBy::kShadowTestsAsTraced) {
                         ++shadowKept;
@@ -466,6 +469,8 @@ bool BlockTracer::Begin(std::uint32_t serial, int left, int top, int right, int 
         plan.counters->replaySamplesTried += replayTried;
         plan.counters->shadowSamplesKept += shadowKept;
         plan.counters->surfaceSamplesKept += surfaceKept;
+        plan.counters->replayRuns += replayRuns;
+        plan.counters->replayKeptSegments += keptSegments;
     }
     if (!anyDirty) {
         plan.counters->reusedPixels += area;

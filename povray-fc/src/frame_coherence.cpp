@@ -246,7 +246,7 @@ void FrameCoherence::EndFrame(std::uint64_t raysTraced) {
         current_.replaySamplesTried = counters_.replaySamplesTried.load();
         current_.shadowSamplesKept = counters_.shadowSamplesKept.load();
         current_.surfaceSamplesKept = counters_.surfaceSamplesKept.load();
-        replayPolicy_.AfterFrame(current_.replaySamplesTried, current_.shadowSamplesKept + current_.surfaceSamplesKept);
+        replayPolicy_.AfterFrame(counters_.replayRuns.load(), counters_.replayKeptSegments.load());
         // Blocks this frame did not render missed its changes.
         if (store_) store_->ForgetUntouched();
         current_.storeBytes = store_ ? store_->MemoryBytes() : 0;

@@ -7,24 +7,26 @@
 namespace povrayfc {
 namespace {
 
-// How many of `frames` frames keep replays when every frame tries `tried` and keeps `kept`
-// (a frame that keeps none tries none the next).
-int FramesKeeping(int frames, std::uint64_t tried, std::uint64_t kept) {
+// How many of `frames` frames keep replays when every frame runs `runs` searches and tests
+// again and keeps samples of `kept` segments (a frame that keeps none runs none the next).
+int FramesKeeping(int frames, std::uint64_t runs, std::uint64_t kept) {
     ReplayPolicy policy;
     int keeping = 0;
     for (int f = 0; f < frames; ++f) {
         const bool keep = policy.Keep();
         keeping += keep;
-        policy.AfterFrame(keep ? tried : 0, keep ? kept : 0);
+        policy.AfterFrame(keep ? runs : 0, keep ? kept : 0);
     }
     return keeping;
 }
 
-TEST(ReplayPolicy, KeepsWhileTriesPay) {
-    EXPECT_EQ(FramesKeeping(100, 1000, 250), 100);
-    EXPECT_EQ(FramesKeeping(100, 1000, 900), 100);
-    // Frames with nothing to try say nothing.
+TEST(ReplayPolicy, KeepsWhileTheRaysKeptPayForTheRuns) {
+    EXPECT_EQ(FramesKeeping(100, 1000, 4000), 100);
+    EXPECT_EQ(FramesKeeping(100, 1000, 9000), 100);
+    // Frames with nothing to run say nothing.
     EXPECT_EQ(FramesKeeping(100, 0, 0), 100);
+    // Samples a run keeps that are hardly more than the run (a camera ray and a shadow test).
+    EXPECT_LT(FramesKeeping(100, 1000, 3999), 10);
 }
 
 TEST(ReplayPolicy, PausesLongerEachTimeTriesDoNotPay) {
@@ -46,7 +48,7 @@ TEST(ReplayPolicy, APayingFrameResetsThePause) {
         policy.AfterFrame(0, 0);
     }
     EXPECT_TRUE(policy.Keep());
-    policy.AfterFrame(1000, 500);  // pays: the next pause is the first again, not twice it
+    policy.AfterFrame(1000, 5000);  // pays: the next pause is the first again, not twice it
     EXPECT_TRUE(policy.Keep());
     policy.AfterFrame(1000, 1);
     int paused = 0;

@@ -34,12 +34,16 @@ struct FrameCounters {
     // what they kept, run again, gave what it gave: by their shadow tests (with or without
     // hits), and by their surface hits alone.
     std::atomic<std::uint64_t> replaySamplesTried{0}, shadowSamplesKept{0}, surfaceSamplesKept{0};
+    // What trying them cost and saved, in rays: searches and shadow tests run again, and
+    // the segments of the samples they kept (ReplayPolicy).
+    std::atomic<std::uint64_t> replayRuns{0}, replayKeptSegments{0};
 
     void Reset() {
         tracedPixels = reusedPixels = tracedSamples = reusedSamples = reusedBlocks = replayedBlocks = 0;
         testedSamples = clearedSamples = overBudgetBlocks = unrecordedSamples = 0;
         tiedSamplesReplayed = tiedSamplesKept = 0;
         replaySamplesTried = shadowSamplesKept = surfaceSamplesKept = 0;
+        replayRuns = replayKeptSegments = 0;
     }
 };
 
