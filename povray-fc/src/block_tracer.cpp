@@ -335,6 +335,7 @@ bool BlockTracer::Begin(std::uint32_t serial, int left, int top, int right, int 
     plan.store->Touch(serial);
     packTightly_ = plan.store->PackTightly();
     old_ = plan.store->Find(serial);
+    mostlyDirty_ = false;
     leftOut_ = old_ == nullptr && plan.store->LeftOut(serial);
     if (old_ && (!old_->Covers(left, top, right, bottom) || old_->opaque != !record_)) old_ = nullptr;
     if (old_ && plan.everythingDirty) old_ = nullptr;
@@ -397,7 +398,7 @@ bool BlockTracer::Begin(std::uint32_t serial, int left, int top, int right, int 
         const GroupIndex &index = old_->groupIndex;
         oldDirty_.assign(n, 0);
         std::uint64_t tested = 0, cleared = 0, tiedReplayed = 0, tiedKept = 0, replayTried = 0, shadowKept = 0,
-                      surfaceKept = 0, replayRuns = 0, keptSegments = 0;
+                      surfaceKept = 0, replayRuns = 0, keptSegments = 0, dirtyCount = 0;
         for (std::size_t g = 0; g < groupReach_.size(); ++g) {
             const std::uint8_t flags = index.flags[g];
             const bool everything = (flags & GroupIndex::kEverything) != 0;
@@ -460,6 +461,7 @@ bool BlockTracer::Begin(std::uint32_t serial, int left, int top, int right, int 
                 }
                 oldDirty_[i] = dirty;
                 anyDirty |= dirty;
+                dirtyCount += dirty;
             }
         }
         plan.counters->testedSamples += tested;
@@ -471,6 +473,7 @@ bool BlockTracer::Begin(std::uint32_t serial, int left, int top, int right, int 
         plan.counters->surfaceSamplesKept += surfaceKept;
         plan.counters->replayRuns += replayRuns;
         plan.counters->replayKeptSegments += keptSegments;
+        mostlyDirty_ = 8 * dirtyCount > 7 * n;
     }
     if (!anyDirty) {
         plan.counters->reusedPixels += area;
@@ -555,7 +558,7 @@ void BlockTracer::BeginSample() {
                     packTightly_);
     // Traced again where a record was: a change reached it, and may reach it again. It keeps
     // its hits, and the shadow tests that light them.
-    const bool reached = surfaceReplayer_ != nullptr && old_ != nullptr && plan_->keepReplays;
+    const bool reached = surfaceReplayer_ != nullptr && old_ != nullptr && plan_->keepReplays && !mostlyDirty_;
     recorder_.KeepSurfaceHits(reached);
     recorder_.KeepEveryShadowTest(reached && shadowReplayer_ != nullptr);
     StartRecordingRays(recorder_);
