@@ -558,9 +558,7 @@ void BlockTracer::BeginSample() {
                     packTightly_);
     // Traced again where a record was: a change reached it, and may reach it again. It keeps
     // its hits, and the shadow tests that light them.
-    const bool reached = surfaceReplayer_ != nullptr && old_ != nullptr && plan_->keepReplays && !mostlyDirty_;
-    recorder_.KeepSurfaceHits(reached);
-    recorder_.KeepEveryShadowTest(reached && shadowReplayer_ != nullptr);
+    recorder_.KeepSurfaceHits(surfaceReplayer_ != nullptr && old_ != nullptr && plan_->keepReplays && !mostlyDirty_);
     StartRecordingRays(recorder_);
 }
 

@@ -74,10 +74,10 @@ class SampleRecorder {
     // through, to run them again (shadow_replay.h): only where they can be run again.
     void KeepShadowTests(bool keep) { keepShadowTests_ = keep; }
     bool KeepsShadowTests() const { return keepShadowTests_; }
-    // Whether this sample also keeps its shadow tests that passed nothing and reached the
-    // light (set for each sample, with KeepSurfaceHits: they start where its hits end).
-    void KeepEveryShadowTest(bool keep) { keepEveryShadowTest_ = keep; }
-    bool KeepsEveryShadowTest() const { return keepEveryShadowTest_; }
+    // Whether this sample also keeps its shadow tests that passed nothing: when it keeps its
+    // surface hits (KeepSurfaceHits) and its shadow tests can be run again, since they
+    // start where its hits end.
+    bool KeepsEveryShadowTest() const { return keepSurfaceHits_ && keepShadowTests_; }
     // Whether what the shadow caches held as a test started may change what it gives: in a
     // scene where something lets light through (a cached object is tried first, and what
     // it filtered counts first). Elsewhere only an opaque surface is cached, and a cached
@@ -248,7 +248,6 @@ class SampleRecorder {
     std::vector<TiedSearch> ties_;  // the sample's tied searches, in the order they ran
     bool tiesComplete_ = true;      // every tied search of the sample is in ties_
     bool keepShadowTests_ = false;
-    bool keepEveryShadowTest_ = false;
     bool shadowCachesMatter_ = true;
     std::vector<ShadowTest> shadowTests_;  // the sample's, in the order they ran
     bool keepSurfaceHits_ = false;
@@ -293,7 +292,7 @@ inline void RecordSurfaceHit(const SurfaceHit &hit) {
 //
 // A test that passed something and started with empty shadow caches is also kept whole, to
 // be run again (LightColour, CacheHeld, Describe; shadow_replay.h); in a sample traced
-// again (SampleRecorder::KeepEveryShadowTest), so is one that passed nothing, and, where
+// again (SampleRecorder::KeepsEveryShadowTest), so is one that passed nothing, and, where
 // only opaque surfaces are cached, one an opaque surface answered or that started with a
 // cached object. While a kept test is run again, it writes what answered it to
 // detail::tlsShadowRun. Costs one thread-local test when the thread is not recording.
