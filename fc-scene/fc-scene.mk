@@ -6,7 +6,7 @@
 
 FC_SCENE_BUILD := $(BUILD)/fc-scene
 FC_SCENE_LIB := $(FC_SCENE_BUILD)/libfcscene.a
-FC_SCENE_OBJS := $(addprefix $(FC_SCENE_BUILD)/,scene_units.o corner_boxes.o tie_searches.o shadow_tests.o surface_hits.o)
+FC_SCENE_OBJS := $(addprefix $(FC_SCENE_BUILD)/,scene_units.o corner_boxes.o mesh_faces.o tie_searches.o shadow_tests.o surface_hits.o)
 # POV-Ray's headers change only with the series (the patched stamp); ours with their files.
 FC_SCENE_HEADERS := $(wildcard $(TOP)/fc-scene/*.h $(TOP)/povray-fc/include/povrayfc/*.h)
 

@@ -7,6 +7,8 @@
 #include <algorithm>
 #include <cstdint>
 #include <cstring>
+#include <memory>
+#include <utility>
 #include "backend/scene/camera.h"
 #include "backend/scene/objects.h"
 #include "backend/shape/boxes.h"
@@ -28,6 +30,7 @@
 #include "povrayfc/shape_hulls.h"
 
 #include "corner_boxes.h"
+#include "mesh_faces.h"
 #include "scene_units.h"
 
 // this must be the last file included
@@ -313,6 +316,9 @@ void AddUnits(Object object, std::uint64_t path, std::uint64_t pathGeometry, boo
             signature.SetUnitCornerBox(unit, CombineHashes(path, object->fcHash == 0 ? UniqueHashValue() : object->fcCornerless),
                                        corners);
     }
+    std::uint64_t meshKey = 0;
+    if (std::shared_ptr<const MeshFaces> faces = MeshFacesOf(object, pathGeometry, meshKey))
+        signature.SetUnitMeshFaces(unit, meshKey, std::move(faces));
     SetUnit(object, unit);
     if (unit != kUnitUnknown)
         unitObjects.push_back(object);

@@ -76,6 +76,28 @@ bool AddHull(const UnitSignature &unit, FrameChange &change) {
     return true;
 }
 
+// A mesh cut into its faces (UnitSignature::meshFaces) gives at most this many hulls;
+// beyond, its box.
+constexpr std::size_t kMaxMeshHulls = 4096;
+
+// The hulls of a unit whose geometry is new: a mesh's changed faces (README.md, "Meshes"),
+// else its own (AddHull). `lastFaces` is filled on first use.
+bool AddReshapedHulls(const UnitSignature &unit, const SceneSignature &last, LastMeshFaces &lastFaces, bool &lastFacesFilled,
+                      FrameChange &change) {
+    if (unit.meshFaces == nullptr || unit.infinite) return AddHull(unit, change);
+    if (!lastFacesFilled) {
+        for (const UnitSignature &old : last.units)
+            if (old.meshFaces != nullptr) lastFaces.Add(old.meshKey, *old.meshFaces);
+        lastFacesFilled = true;
+    }
+    const std::size_t first = change.hulls.size();
+    if (!MeshChangeHulls(unit.meshKey, *unit.meshFaces, lastFaces, kMaxMeshHulls, change.hulls))
+        return AddHull(unit, change);
+    if (unit.translucent)
+        change.translucentHulls.insert(change.translucentHulls.end(), change.hulls.begin() + first, change.hulls.end());
+    return true;
+}
+
 // Closed boxes that together hold every point of `a` outside `b`: at most two slabs per
 // axis, each cut to what is left of `a` on the axes before it. Returns how many.
 int BoxMinus(const Box &a, const Box &b, Box out[6]) {
@@ -238,6 +260,8 @@ FrameChange CompareFrames(const FrameSetup &lastSetup, const SceneSignature &las
     std::vector<std::pair<std::uint32_t, std::uint32_t>> recolouredParts;  // (unit, its index in vanished)
     std::vector<std::uint8_t> taken(change.vanished.size(), 0);
     std::vector<std::uint32_t> reshaped;  // appeared units whose geometry is new
+    LastMeshFaces lastFaces;
+    bool lastFacesFilled = false;
     for (std::uint32_t i : appeared) {
         std::uint32_t same;
         if (now.units[i].cutPart ? oldParts.Take(now.units[i].geometry, same)
@@ -269,7 +293,7 @@ FrameChange CompareFrames(const FrameSetup &lastSetup, const SceneSignature &las
             AddBoxChangeHulls(last.units[change.vanished[same]], now.units[i], change);
         } else {
             if (now.units[i].cutPart) reshapedNow.insert(now.units[i].cutGroup);
-            if (!AddHull(now.units[i], change)) return change;
+            if (!AddReshapedHulls(now.units[i], last, lastFaces, lastFacesFilled, change)) return change;
         }
         if (now.units[i].hasBall && change.blockers.size() < FrameChange::kMaxBlockers)
             change.blockers.push_back(Blocker::OfBall(now.units[i].ball, i));

@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <memory>
 
 #include "povrayfc/change_detection.h"
 
@@ -150,6 +151,68 @@ TEST(ChangeDetection, AUnitWithCapsulesIsAHullPerCapsuleWithinItsBox) {
     ASSERT_EQ(UnitHulls(cone, hulls), 1);
     EXPECT_FALSE(hulls[0].hasCapsule);
     EXPECT_GE(hulls[0].box.hi.x, 10.0);
+}
+
+// A mesh of two triangles side by side (x from 0 to 1 and 1 to 2, in z = 0); the second's
+// apex at height `apex`. Its key stands for everything else about it.
+UnitSignature Mesh(std::uint64_t hash, double apex, std::uint64_t key = 7) {
+    auto faces = std::make_shared<MeshFaces>();
+    for (int i = 0; i < 2; ++i) {
+        MeshFace f;
+        const double h = i == 0 ? 1.0 : apex;
+        f.triangle = Triangle{Vec3{double(i), 0, 0}, Vec3{i + 1.0, 0, 0}, Vec3{i + 0.5, h, 0}, 1e-6};
+        f.key = std::uint64_t(1000 * h) + 10 * i;
+        f.box = Box{Vec3{double(i), 0, 0}, Vec3{i + 1.0, h, 0}};
+        f.rimCount = 1;
+        f.rims[0] = Box{Vec3{i + 0.49, h - 0.01, 0}, Vec3{i + 0.51, h, 0}};  // near its apex
+        faces->push_back(f);
+    }
+    UnitSignature u = Unit(hash, hash, 0);
+    u.bounds = Box{Vec3{0, 0, 0}, Vec3{2, std::max(1.0, apex), 0}};
+    u.meshKey = key;
+    u.meshFaces = faces;
+    return u;
+}
+
+TEST(ChangeDetection, AMeshIsTestedAtTheTrianglesThatChangedAndTheRimsOfTheOthers) {
+    const SceneSignature a = Scene({Mesh(1, 1.0)});
+    const SceneSignature b = Scene({Mesh(2, 1.5)});
+    const FrameChange c = CompareFrames(Frame(), a, Frame(), b, false);
+    ASSERT_EQ(c.fullReason, "");
+    // Invariant: what ended on the old mesh is dirty; the new triangle is a hull shaped like
+    // it, and the one kept gives its rim alone.
+    EXPECT_EQ(c.vanished, std::vector<std::uint32_t>{0});
+    ASSERT_EQ(c.hulls.size(), 2u);
+    EXPECT_TRUE(c.hulls[0].hasTriangle && c.hulls[1].hasTriangle);
+    EXPECT_LE(c.hulls[0].box.hi.x - c.hulls[0].box.lo.x, 0.03);  // the kept one's rim
+    EXPECT_GE(c.hulls[1].box.hi.y, 1.5);                         // the new one
+    // A ray straight through the new triangle's box beside the triangle meets no hull;
+    // one through the new triangle does, and one through the kept triangle's middle not.
+    auto meets = [&](double x, double y) {
+        const double o[3] = {x, y, -1}, d[3] = {0, 0, 1};
+        Segment s;
+        EXPECT_TRUE(MakeSegment(o, d, 10.0, s));
+        return std::any_of(c.hulls.begin(), c.hulls.end(), [&](const Hull &h) { return MayMeet(s, h); });
+    };
+    EXPECT_FALSE(meets(1.05, 1.4));
+    EXPECT_TRUE(meets(1.5, 1.4));
+    EXPECT_FALSE(meets(0.5, 0.5));
+    EXPECT_TRUE(meets(0.5, 0.995));
+}
+
+TEST(ChangeDetection, AMeshUnderAnotherKeyKeepsNoTriangleAndOneWithoutFacesIsItsBox) {
+    // Another key (its flags, or the unions around it): no triangle is kept.
+    FrameChange c = CompareFrames(Frame(), Scene({Mesh(1, 1.0)}), Frame(), Scene({Mesh(2, 1.5, 8)}), false);
+    ASSERT_EQ(c.hulls.size(), 2u);
+    EXPECT_TRUE(c.hulls[0].hasTriangle && c.hulls[1].hasTriangle);
+    EXPECT_GE(c.hulls[0].box.hi.y, 0.99);
+    // Without faces: its box.
+    UnitSignature plain = Mesh(2, 1.5);
+    plain.meshFaces = nullptr;
+    c = CompareFrames(Frame(), Scene({Mesh(1, 1.0)}), Frame(), Scene({plain}), false);
+    ASSERT_EQ(c.hulls.size(), 1u);
+    EXPECT_FALSE(c.hulls[0].hasTriangle);
+    EXPECT_GE(c.hulls[0].box.hi.x, 2.0);
 }
 
 TEST(ChangeDetection, TheHullsOfWhatAShadowTestMayPassAreListedApart) {

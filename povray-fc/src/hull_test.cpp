@@ -243,3 +243,79 @@ TEST(Hull, ClearanceHandPicked) {
 
 }  // namespace
 
+
+// A ray through a point of a triangle (or within its thickness of it) is never missed by
+// the hull's triangle, whatever the ray, the triangle's shape (slivers too) or the float
+// rounding of the segment; and the triangle refines its box: rays through the box that
+// pass beside the triangle are rejected.
+TEST(Hull, RandomSegmentsNeverMissATriangleTheyTouch) {
+    std::mt19937_64 rng(29);
+    std::uniform_real_distribution<double> pos(-30, 30), unit(-1, 1), weight(0.0, 1.0);
+    int touching = 0, besideRejected = 0, beside = 0;
+    for (int i = 0; i < 40000; ++i) {
+        Triangle tri;
+        tri.a = Vec3{pos(rng), pos(rng), pos(rng)};
+        tri.b = tri.a + Vec3{4 * unit(rng), 4 * unit(rng), 4 * unit(rng)};
+        tri.c = (i % 7 == 0) ? tri.a + 0.5 * (tri.b - tri.a) + Vec3{1e-3 * unit(rng), 0, 0}  // a sliver
+                             : tri.a + Vec3{4 * unit(rng), 4 * unit(rng), 4 * unit(rng)};
+        tri.thickness = (i % 3 == 0) ? 0.0 : 1e-3 * weight(rng);
+        Box box;
+        const Vec3 th{tri.thickness, tri.thickness, tri.thickness};
+        for (const Vec3 &v : {tri.a, tri.b, tri.c}) box.Grow(v - th).Grow(v + th);
+        // Aim at a point of the triangle (barycentric weights at least 1e-3), or beside it
+        // (one weight at most -0.05), perhaps lifted off its plane within its thickness.
+        const bool inside = i % 2 == 0;
+        const double w1 = 1e-3 + weight(rng), w2 = 1e-3 + weight(rng), w3 = 1e-3 + weight(rng);
+        // One in four of the points inside lies a hair from an edge, where only the margin
+        // for the segment's float rounding keeps the ray...
+        const double alpha = !inside ? -0.05 - weight(rng) : (i % 8 == 0 ? 1e-9 : w1 / (w1 + w2 + w3));
+        const double beta = (1 - alpha) * w2 / (w2 + w3), gamma = 1 - alpha - beta;
+        Vec3 target = alpha * tri.a + beta * tri.b + gamma * tri.c;
+        if (tri.thickness > 0 && inside) target = target + Vec3{0.5 * tri.thickness * unit(rng), 0, 0};
+        // ... seen from afar, where the segment's rounding dwarfs the triangle's hair.
+        const double far = i % 8 == 0 ? 300.0 : 1.0;
+        const Vec3 o{far * pos(rng), far * pos(rng), far * pos(rng)};
+        const Vec3 d = (i % 5 == 0) ? 1e-3 * (target - o) : target - o;
+        const double reach = (i % 5 == 0) ? 1e3 : 1.0;
+        const double t = (i % 4 == 0) ? kInf : reach * (1.0 + 1e-6 + weight(rng));
+        Segment s;
+        const double od[3] = {o.x, o.y, o.z}, dd[3] = {d.x, d.y, d.z};
+        if (!MakeSegment(od, dd, t, s)) continue;
+        const Hull h = MakeHull(box, tri);
+        ASSERT_TRUE(h.hasTriangle);
+        const bool stored = MayMeet(s, h);
+        if (inside) {
+            ++touching;
+            ASSERT_TRUE(stored) << i;
+        } else if (MayMeet(s, MakeHull(box))) {
+            ++beside;
+            besideRejected += !stored;
+        }
+    }
+    EXPECT_GT(touching, 15000);
+    EXPECT_GT(besideRejected, beside / 2);
+}
+
+TEST(Hull, TriangleHandPicked) {
+    Triangle tri{Vec3{-1, 0, 0}, Vec3{1, 0, 0}, Vec3{0, 1, 0}, 0.0};
+    Box box{Vec3{-1, 0, 0}, Vec3{1, 1, 0}};
+    const Hull h = MakeHull(box, tri);
+    ASSERT_TRUE(h.hasTriangle);
+    // Straight through the middle, through a corner of the box beside the triangle, along
+    // an edge, and stopping short of the triangle.
+    EXPECT_TRUE(MayMeet(Seg(Vec3{0, 0.3, -5}, Vec3{0, 0, 1}, kInf), h));
+    EXPECT_FALSE(MayMeet(Seg(Vec3{0.9, 0.9, -5}, Vec3{0, 0, 1}, kInf), h));
+    EXPECT_TRUE(MayMeet(Seg(Vec3{0.5, 0.5, -5}, Vec3{0, 0, 1}, kInf), h));
+    EXPECT_FALSE(MayMeet(Seg(Vec3{0, 0.3, -5}, Vec3{0, 0, 1}, 4.9), h));
+    EXPECT_TRUE(MayMeet(Seg(Vec3{0, 0.3, -5}, Vec3{0, 0, 1}, 5.0), h));
+    // In its plane, beside it and across it.
+    EXPECT_FALSE(MayMeet(Seg(Vec3{0.6, 1.1, 0}, Vec3{1, -1, 0}, kInf), h));
+    EXPECT_TRUE(MayMeet(Seg(Vec3{-3, 0.2, 0}, Vec3{1, 0, 0}, kInf), h));
+    // Thickness: a ray passing just above the plane meets a thick triangle only.
+    EXPECT_FALSE(MayMeet(Seg(Vec3{-3, 0.2, 0.01}, Vec3{1, 0, 0}, kInf), h));
+    Triangle thick = tri;
+    thick.thickness = 0.02;
+    Box thickBox = box;
+    thickBox.lo.z = -0.02, thickBox.hi.z = 0.02;
+    EXPECT_TRUE(MayMeet(Seg(Vec3{-3, 0.2, 0.01}, Vec3{1, 0, 0}, kInf), MakeHull(thickBox, thick)));
+}

@@ -6,6 +6,7 @@
 #include <cmath>
 #include <cstdio>
 #include <sstream>
+#include <utility>
 
 namespace povrayfc {
 
@@ -124,6 +125,14 @@ void SignatureBuilder::SetUnitCornerBox(std::uint32_t unit, std::uint64_t corner
     u.cornerBox = true;
     u.cornerless = cornerless;
     u.corners = corners;
+}
+
+void SignatureBuilder::SetUnitMeshFaces(std::uint32_t unit, std::uint64_t meshKey, std::shared_ptr<const MeshFaces> faces) {
+    if (unit >= signature_.units.size() || faces == nullptr) return;
+    UnitSignature &u = signature_.units[unit];
+    if (u.infinite || u.cutPart) return;
+    u.meshKey = meshKey;
+    u.meshFaces = std::move(faces);
 }
 
 void SignatureBuilder::EndItem(ParseItemClass itemClass, std::uint64_t hash, bool addedLights,

@@ -103,6 +103,13 @@ struct Capsule {
     }
 };
 
+// Every point within `thickness` of the triangle [a, b, c]: a mesh's triangle, whose
+// plane POV-Ray keeps in single precision (a tight hull where its box is loose).
+struct Triangle {
+    Vec3 a, b, c;
+    double thickness = 0.0;
+};
+
 inline Box Union(const Box &a, const Box &b) {
     Box r = a;
     r.Grow(b);

@@ -12,12 +12,15 @@
 namespace povrayfc {
 
 // A changed region: always a box, optionally refined by a capsule (spheres, cylinders and
-// cones, whose boxes are loose when slanted). A point can only have changed if it lies in
-// the box and, when there is one, in the capsule.
+// cones, whose boxes are loose when slanted) or by a thick triangle (a mesh's triangle). A
+// point can only have changed if it lies in the box and, when there is one, in the capsule
+// or the triangle.
 struct Hull {
     Box box;
     bool hasCapsule = false;
     Capsule capsule;
+    bool hasTriangle = false;
+    Triangle triangle;
 };
 
 // A hull around `box` (and `capsule`), widened by a relative hair so that single-precision
@@ -25,6 +28,9 @@ struct Hull {
 // object. Throws std::invalid_argument for NaN; an empty box gives an empty hull.
 Hull MakeHull(const Box &box);
 Hull MakeHull(const Box &box, const Capsule &capsule);
+// The triangle is thickened by the same hair (a NaN throws; a triangle that is not finite
+// leaves the box alone).
+Hull MakeHull(const Box &box, const Triangle &triangle);
 
 // How far from a stored segment the ray it stands for may lie, near a target of centre c
 // and half extent h (max norm): the float rounding of origin, direction and length moves
@@ -121,6 +127,12 @@ struct HullTest {
     double halfExtent = 0.0;     // max norm
     Vec3 axis{0.0, 0.0, 0.0};    // the capsule's b - a
     double axisLength = 0.0;
+    // The triangle's separating axes that do not hang on the segment (its normal and, in its
+    // plane, the normals of its edges) with its extent along each, and its edges.
+    Vec3 triangleAxes[4];
+    double triangleLow[4] = {0.0, 0.0, 0.0, 0.0}, triangleHigh[4] = {0.0, 0.0, 0.0, 0.0};
+    double triangleAxisNorm[4] = {0.0, 0.0, 0.0, 0.0};
+    Vec3 triangleEdges[3];
 };
 HullTest PrepareHullTest(const Hull &hull);
 // MayMeet(s, hull) with `test` = PrepareHullTest(hull): the same arithmetic, the same answer.

@@ -19,10 +19,12 @@
 #define POVRAYFC_SCENE_SIGNATURE_H
 
 #include <cstdint>
+#include <memory>
 #include <string>
 #include <vector>
 
 #include "povrayfc/geometry.h"
+#include "povrayfc/mesh_faces.h"
 #include "povrayfc/shadow_blockers.h"
 
 namespace povrayfc {
@@ -82,6 +84,11 @@ struct UnitSignature {
     // merges, intersections and differences").
     bool cutPart = false;
     std::uint32_t cutGroup = 0;  // for a part: which CSG of the frame it belongs to
+    // A mesh cut into its triangles (null for anything else), and the key of everything
+    // else that decides how a ray meets them: when its shape changes it is tested at the
+    // triangles that changed instead of in its box (mesh_faces.h; README.md, "Meshes").
+    std::uint64_t meshKey = 0;
+    std::shared_ptr<const MeshFaces> meshFaces;
 };
 
 struct SceneSignature {
