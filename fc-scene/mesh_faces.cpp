@@ -7,6 +7,7 @@
 #include <cstring>
 
 #include "backend/scene/objects.h"
+#include "backend/math/matrices.h"
 #include "backend/shape/mesh.h"
 
 #include "povrayfc/parse_hasher.h"
@@ -47,8 +48,9 @@ Vec3 Cross(const Vec3 &a, const Vec3 &b)
 }
 
 // The part of the triangle [p[0], p[1], p[2]] where coordinate `axis` is at least `floor`
-// (one clip of Sutherland and Hodgman): its box, empty when none is.
-Box BoxAbove(const Vec3 p[3], int axis, double floor)
+// (one clip of Sutherland and Hodgman), through `toWorld`: its box, empty when none is.
+template <class ToWorld>
+Box BoxAbove(const Vec3 p[3], int axis, double floor, ToWorld toWorld)
 {
     Box box;
     for (int i = 0; i < 3; ++i)
@@ -56,16 +58,27 @@ Box BoxAbove(const Vec3 p[3], int axis, double floor)
         const Vec3 &a = p[i], &b = p[(i + 1) % 3];
         const bool aIn = a[axis] >= floor, bIn = b[axis] >= floor;
         if (aIn)
-            box.Grow(a);
+            box.Grow(toWorld(a));
         if (aIn != bIn)
         {
             const double t = (floor - a[axis]) / (b[axis] - a[axis]);
             Vec3 crossing = a + t * (b - a);
             crossing[axis] = floor;
-            box.Grow(crossing);
+            box.Grow(toWorld(crossing));
         }
     }
     return box;
+}
+
+// An upper bound on how much the linear part of the 4x4 matrix m stretches a vector (its
+// Frobenius norm).
+double Stretch(const pov::MATRIX m)
+{
+    double sum = 0.0;
+    for (int row = 0; row < 3; ++row)
+        for (int column = 0; column < 3; ++column)
+            sum += m[row][column] * m[row][column];
+    return std::sqrt(sum);
 }
 
 Box Widened(Box box, double by)
@@ -77,12 +90,27 @@ Box Widened(Box box, double by)
 
 }  // namespace
 
-std::shared_ptr<const MeshFaces> MeshFacesOf(const pov::ObjectBase *object, std::uint64_t around, std::uint64_t &meshKey)
+std::shared_ptr<const MeshFaces> MeshFacesOf(const pov::ObjectBase *object, std::uint64_t around, std::uint64_t &meshKey,
+                                             bool &boxMustStay)
 {
     const pov::Mesh *mesh = dynamic_cast<const pov::Mesh *>(object);
-    if (mesh == nullptr || mesh->Trans != nullptr || !mesh->Clip.empty() || !mesh->Bound.empty() ||
-        Test_Flag(mesh, INVERTED_FLAG) || mesh->Data == nullptr || mesh->Data->Number_Of_Triangles > kMaxFaces)
+    if (mesh == nullptr || !mesh->Clip.empty() || !mesh->Bound.empty() || Test_Flag(mesh, INVERTED_FLAG) ||
+        mesh->Data == nullptr || mesh->Data->Number_Of_Triangles > kMaxFaces)
         return nullptr;
+    // A transformation intersects the ray in the mesh's space: what that rounds (about 1e-16
+    // of the ray's origin, times the transformation's condition) must stay far inside the
+    // segments' margin (2^-19 of it), and the mesh's tolerances below are stretched by it.
+    const pov::TRANSFORM *trans = mesh->Trans;
+    const double stretch = trans != nullptr ? Stretch(trans->matrix) : 1.0;
+    if (trans != nullptr && !(stretch * Stretch(trans->inverse) <= 1e6))
+        return nullptr;
+    auto toWorld = [trans](const Vec3 &v) {
+        if (trans == nullptr)
+            return v;
+        pov::VECTOR local = {v.x, v.y, v.z}, world;
+        pov::MTransPoint(world, local, trans);
+        return Vec3{world[pov::X], world[pov::Y], world[pov::Z]};
+    };
     const pov::MESH_DATA &data = *mesh->Data;
     // How far from the mesh's origin its points lie (max norm): what its single-precision
     // numbers are rounded relative to.
@@ -103,6 +131,8 @@ std::shared_ptr<const MeshFaces> MeshFacesOf(const pov::ObjectBase *object, std:
     // whether a ray enters them may differ between the mesh's old tree and its new.
     const double thickness = 0x1p-18 * reach;
     const double rim = 0x1p-16 * reach;
+    // In world space: the transformation stretches them, and rounds the vertices it moves.
+    const double worldThickness = stretch * thickness;
     auto faces = std::make_shared<MeshFaces>();
     faces->reserve(std::size_t(data.Number_Of_Triangles));
     for (long i = 0; i < data.Number_Of_Triangles; ++i)
@@ -121,23 +151,37 @@ std::shared_ptr<const MeshFaces> MeshFacesOf(const pov::ObjectBase *object, std:
             for (int axis = 0; axis < 3; ++axis)
                 key = HashFloat(key, (*v)[axis]);
         face.key = HashFloat(key, t.Distance);
-        face.triangle = Triangle{p[0], p[1], p[2], thickness};
-        for (const Vec3 &v : p)
+        const Vec3 world[3] = {toWorld(p[0]), toWorld(p[1]), toWorld(p[2])};
+        face.triangle = Triangle{world[0], world[1], world[2], worldThickness};
+        for (const Vec3 &v : world)
             face.box.Grow(v);
-        face.box = Widened(face.box, thickness);
+        face.box = Widened(face.box, worldThickness);
         for (int axis = 0; axis < 3; ++axis)
         {
+            // A hit within `thickness` of the triangle and `rim` of its top, in the mesh's
+            // space, where its tree is.
             const double top = std::max({p[0][axis], p[1][axis], p[2][axis]});
-            // A hit within `thickness` of the triangle and `rim` of its top.
-            const Box near = BoxAbove(p, axis, top - rim - thickness);
+            const Box near = BoxAbove(p, axis, top - rim - thickness, toWorld);
             if (!near.Empty())
-                face.rims[face.rimCount++] = Widened(near, thickness);
+                face.rims[face.rimCount++] = Widened(near, worldThickness);
         }
         faces->push_back(face);
     }
     std::uint64_t key = CombineHashes(around, 0x6d6573686b6579ULL);  // "meshkey"
     key = CombineHashes(key, std::uint64_t(mesh->Flags));
+    // Both matrices: the ray is taken into the mesh's space by the inverse, which POV-Ray
+    // composes step by step, not from the matrix.
+    if (trans != nullptr)
+        for (const pov::MATRIX *m : {&trans->matrix, &trans->inverse})
+            for (int row = 0; row < 4; ++row)
+                for (int column = 0; column < 4; ++column)
+                {
+                    std::uint64_t bits;
+                    std::memcpy(&bits, &(*m)[row][column], sizeof bits);
+                    key = CombineHashes(key, bits);
+                }
     meshKey = key;
+    boxMustStay = trans != nullptr;
     return faces;
 }
 

@@ -19,11 +19,14 @@ namespace scene
 {
 
 // The faces of `object` when it is a mesh frame coherence can cut into its triangles, else
-// null: no transformation of its own (its bounding boxes are then its triangles' own,
-// rounded at their upper faces only), no clipped_by or bounded_by, not inverted, at most
-// kMaxFaces triangles, none of them a sliver. `meshKey` gets what else decides how a ray
-// meets them: `around` (the geometry of the unions it is in) and the mesh's flags.
-std::shared_ptr<const MeshFaces> MeshFacesOf(const pov::ObjectBase *object, std::uint64_t around, std::uint64_t &meshKey);
+// null: no clipped_by or bounded_by, not inverted, at most kMaxFaces triangles, none of
+// them a sliver, and a transformation (if any) far from singular. `meshKey` gets what else
+// decides how a ray meets them: `around` (the geometry of the unions it is in), the mesh's
+// flags and its transformation. `boxMustStay`: it has a transformation, so POV-Ray rounds
+// its world box both ways (without one, its boxes are its triangles' own, rounded at their
+// upper faces only, which the rims cover).
+std::shared_ptr<const MeshFaces> MeshFacesOf(const pov::ObjectBase *object, std::uint64_t around, std::uint64_t &meshKey,
+                                             bool &boxMustStay);
 
 constexpr long kMaxFaces = 1024;
 

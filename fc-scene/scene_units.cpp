@@ -317,8 +317,9 @@ void AddUnits(Object object, std::uint64_t path, std::uint64_t pathGeometry, boo
                                        corners);
     }
     std::uint64_t meshKey = 0;
-    if (std::shared_ptr<const MeshFaces> faces = MeshFacesOf(object, pathGeometry, meshKey))
-        signature.SetUnitMeshFaces(unit, meshKey, std::move(faces));
+    bool boxMustStay = false;
+    if (std::shared_ptr<const MeshFaces> faces = MeshFacesOf(object, pathGeometry, meshKey, boxMustStay))
+        signature.SetUnitMeshFaces(unit, meshKey, std::move(faces), boxMustStay);
     SetUnit(object, unit);
     if (unit != kUnitUnknown)
         unitObjects.push_back(object);

@@ -87,11 +87,12 @@ bool AddReshapedHulls(const UnitSignature &unit, const SceneSignature &last, Las
     if (unit.meshFaces == nullptr || unit.infinite) return AddHull(unit, change);
     if (!lastFacesFilled) {
         for (const UnitSignature &old : last.units)
-            if (old.meshFaces != nullptr) lastFaces.Add(old.meshKey, *old.meshFaces);
+            if (old.meshFaces != nullptr) lastFaces.Add(old.meshKey, *old.meshFaces, old.bounds);
         lastFacesFilled = true;
     }
     const std::size_t first = change.hulls.size();
-    if (!MeshChangeHulls(unit.meshKey, *unit.meshFaces, lastFaces, kMaxMeshHulls, change.hulls))
+    if (!MeshChangeHulls(unit.meshKey, *unit.meshFaces, unit.bounds, unit.meshBoxMustStay, lastFaces, kMaxMeshHulls,
+                         change.hulls))
         return AddHull(unit, change);
     if (unit.translucent)
         change.translucentHulls.insert(change.translucentHulls.end(), change.hulls.begin() + first, change.hulls.end());

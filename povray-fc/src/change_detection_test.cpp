@@ -215,6 +215,20 @@ TEST(ChangeDetection, AMeshUnderAnotherKeyKeepsNoTriangleAndOneWithoutFacesIsIts
     EXPECT_GE(c.hulls[0].box.hi.x, 2.0);
 }
 
+TEST(ChangeDetection, ATransformedMeshKeepsItsTrianglesOnlyWhileItsBoxStays) {
+    // Transformed: POV-Ray rounds its world box both ways, so a kept triangle's hits near
+    // that box's faces may be culled otherwise once the box changes.
+    UnitSignature before = Mesh(1, 1.0), grown = Mesh(2, 1.5), inside = Mesh(3, 0.8);
+    for (UnitSignature *u : {&before, &grown, &inside}) u->meshBoxMustStay = true;
+    before.bounds = inside.bounds = Box{Vec3{0, 0, 0}, Vec3{2, 1, 0}};
+    FrameChange c = CompareFrames(Frame(), Scene({before}), Frame(), Scene({grown}), false);
+    ASSERT_EQ(c.hulls.size(), 1u);
+    EXPECT_FALSE(c.hulls[0].hasTriangle);
+    c = CompareFrames(Frame(), Scene({before}), Frame(), Scene({inside}), false);
+    ASSERT_EQ(c.hulls.size(), 2u);
+    EXPECT_TRUE(c.hulls[0].hasTriangle && c.hulls[1].hasTriangle);
+}
+
 TEST(ChangeDetection, TheHullsOfWhatAShadowTestMayPassAreListedApart) {
     // Invariant: every hull of a translucent unit is also a translucent hull (the tests
     // opaque blockers answered meet them); no opaque unit's is.

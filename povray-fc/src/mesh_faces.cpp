@@ -5,16 +5,39 @@
 
 namespace povrayfc {
 
-void LastMeshFaces::Add(std::uint64_t meshKey, const MeshFaces &faces) {
+namespace {
+
+// Bit for bit: the boxes come from POV-Ray's single-precision ones the same way.
+bool SameBox(const Box &a, const Box &b) {
+    for (int axis = 0; axis < 3; ++axis)
+        if (!(a.lo[axis] == b.lo[axis] && a.hi[axis] == b.hi[axis])) return false;
+    return true;
+}
+
+}  // namespace
+
+void LastMeshFaces::Add(std::uint64_t meshKey, const MeshFaces &faces, const Box &bounds) {
     for (const MeshFace &face : faces) keys_.insert(CombineHashes(meshKey, face.key));
+    auto found = boxes_.find(meshKey);
+    if (found == boxes_.end()) {
+        boxes_[meshKey].bounds = bounds;
+    } else if (!SameBox(found->second.bounds, bounds)) {
+        found->second.several = true;
+    }
+}
+
+bool LastMeshFaces::HadBox(std::uint64_t meshKey, const Box &bounds) const {
+    auto found = boxes_.find(meshKey);
+    return found != boxes_.end() && !found->second.several && SameBox(found->second.bounds, bounds);
 }
 
 bool LastMeshFaces::Had(std::uint64_t meshKey, const MeshFace &face) const {
     return keys_.count(CombineHashes(meshKey, face.key)) != 0;
 }
 
-bool MeshChangeHulls(std::uint64_t meshKey, const MeshFaces &faces, const LastMeshFaces &last, std::size_t maxHulls,
-                     std::vector<Hull> &out) {
+bool MeshChangeHulls(std::uint64_t meshKey, const MeshFaces &faces, const Box &bounds, bool boxMustStay,
+                     const LastMeshFaces &last, std::size_t maxHulls, std::vector<Hull> &out) {
+    if (boxMustStay && !last.HadBox(meshKey, bounds)) return false;
     std::vector<Hull> hulls;
     for (const MeshFace &face : faces) {
         if (!last.Had(meshKey, face)) {

@@ -127,12 +127,14 @@ void SignatureBuilder::SetUnitCornerBox(std::uint32_t unit, std::uint64_t corner
     u.corners = corners;
 }
 
-void SignatureBuilder::SetUnitMeshFaces(std::uint32_t unit, std::uint64_t meshKey, std::shared_ptr<const MeshFaces> faces) {
+void SignatureBuilder::SetUnitMeshFaces(std::uint32_t unit, std::uint64_t meshKey, std::shared_ptr<const MeshFaces> faces,
+                                        bool boxMustStay) {
     if (unit >= signature_.units.size() || faces == nullptr) return;
     UnitSignature &u = signature_.units[unit];
     if (u.infinite || u.cutPart) return;
     u.meshKey = meshKey;
     u.meshFaces = std::move(faces);
+    u.meshBoxMustStay = boxMustStay;
 }
 
 void SignatureBuilder::EndItem(ParseItemClass itemClass, std::uint64_t hash, bool addedLights,

@@ -4,7 +4,7 @@
 // (povray-fc/README.md, "Meshes"). A strip on a grid (edges along the axes, shared
 // vertices) whose far corner rises, with a small triangle far to its side so that the
 // mesh's box spans the view; smooth triangles whose shared vertex moves, casting shadows;
-// and a translated mesh (tested in its box) whose vertex moves too.
+// a translated mesh whose box grows (tested in its box); and a turned one whose box stays.
 #version 3.7;
 #include "common.inc"
 mesh {
@@ -27,4 +27,15 @@ mesh {
   triangle { <0.5, 0, 0.2>, <0.8, 0, 0.2>, <0.65, 0.3, 0.2> }
   pigment { color rgb <0.8, 0.3, 0.7> }
   translate <0.8, 0.9, -0.3>
+}
+// A fan around a centre vertex that slides inside its square, turned and moved into place:
+// its box stays, so its triangles are kept.
+#declare Centre = <0.1 * clock, 0.05 * clock, 0>;
+mesh {
+  triangle { <-0.3, -0.3, 0>, <0.3, -0.3, 0>, Centre }
+  triangle { <0.3, -0.3, 0>, <0.3, 0.3, 0>, Centre }
+  triangle { <0.3, 0.3, 0>, <-0.3, 0.3, 0>, Centre }
+  triangle { <-0.3, 0.3, 0>, <-0.3, -0.3, 0>, Centre }
+  pigment { color rgb <0.2, 0.4, 0.9> }
+  rotate <0, 30, 10> translate <1.2, 0.7, -1>
 }

@@ -6,6 +6,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <memory>
+#include <unordered_map>
 #include <unordered_set>
 #include <vector>
 
@@ -33,22 +34,31 @@ using MeshFaces = std::vector<MeshFace>;
 
 // The faces of the last frame's meshes, each keyed with the key of its mesh
 // (UnitSignature::meshKey): what POV-Ray intersects identically in this frame, if it is
-// still there.
+// still there. And the box of the meshes with each key, where they all had the same.
 class LastMeshFaces {
   public:
-    void Add(std::uint64_t meshKey, const MeshFaces &faces);
+    void Add(std::uint64_t meshKey, const MeshFaces &faces, const Box &bounds);
     bool Had(std::uint64_t meshKey, const MeshFace &face) const;
+    // The meshes of the last frame with this key had one box, `bounds`.
+    bool HadBox(std::uint64_t meshKey, const Box &bounds) const;
     bool Empty() const { return keys_.empty(); }
 
   private:
     std::unordered_set<std::uint64_t> keys_;
+    struct Boxes {
+        Box bounds;
+        bool several = false;  // meshes with this key had different boxes
+    };
+    std::unordered_map<std::uint64_t, Boxes> boxes_;
 };
 
-// The hulls of a mesh whose shape changed (`meshKey`, `faces`): each face none of the last
-// frame's meshes with its key had, and the rims of the others; appended to `out`. False,
-// with `out` untouched, when they would be more than `maxHulls`.
-bool MeshChangeHulls(std::uint64_t meshKey, const MeshFaces &faces, const LastMeshFaces &last, std::size_t maxHulls,
-                     std::vector<Hull> &out);
+// The hulls of a mesh whose shape changed (`meshKey`, `faces`, its box `bounds`): each face
+// none of the last frame's meshes with its key had, and the rims of the others; appended
+// to `out`. False, with `out` untouched, when they would be more than `maxHulls`, or when
+// `boxMustStay` (a transformed mesh: POV-Ray rounds its world box both ways) and the last
+// frame's meshes with its key had another box.
+bool MeshChangeHulls(std::uint64_t meshKey, const MeshFaces &faces, const Box &bounds, bool boxMustStay,
+                     const LastMeshFaces &last, std::size_t maxHulls, std::vector<Hull> &out);
 
 }  // namespace povrayfc
 

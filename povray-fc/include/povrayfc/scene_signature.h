@@ -89,6 +89,9 @@ struct UnitSignature {
     // triangles that changed instead of in its box (mesh_faces.h; README.md, "Meshes").
     std::uint64_t meshKey = 0;
     std::shared_ptr<const MeshFaces> meshFaces;
+    // The mesh is transformed: POV-Ray rounds its world box both ways, so its triangles are
+    // kept only while that box stays the same.
+    bool meshBoxMustStay = false;
 };
 
 struct SceneSignature {

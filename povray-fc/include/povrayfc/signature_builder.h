@@ -67,8 +67,10 @@ public:
     // The unit is a box kept between its corners, `cornerless` everything else about it
     // (UnitSignature::cornerBox).
     void SetUnitCornerBox(std::uint32_t unit, std::uint64_t cornerless, const Box &corners);
-    // The unit is a mesh cut into its faces (UnitSignature::meshFaces, meshKey).
-    void SetUnitMeshFaces(std::uint32_t unit, std::uint64_t meshKey, std::shared_ptr<const MeshFaces> faces);
+    // The unit is a mesh cut into its faces (UnitSignature::meshFaces, meshKey,
+    // meshBoxMustStay).
+    void SetUnitMeshFaces(std::uint32_t unit, std::uint64_t meshKey, std::shared_ptr<const MeshFaces> faces,
+                          bool boxMustStay);
     // A new merge, intersection or difference whose parts are units (its number), and the
     // unit that is one of its parts (UnitSignature::cutPart, cutGroup).
     std::uint32_t NewCutGroup() { return ++cutGroups_; }
