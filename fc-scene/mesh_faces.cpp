@@ -37,16 +37,6 @@ Vec3 Vertex(const pov::SNGL_VECT v)
     return Vec3{v[pov::X], v[pov::Y], v[pov::Z]};
 }
 
-double Dot(const Vec3 &a, const Vec3 &b)
-{
-    return a.x * b.x + a.y * b.y + a.z * b.z;
-}
-
-Vec3 Cross(const Vec3 &a, const Vec3 &b)
-{
-    return Vec3{a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x};
-}
-
 // The part of the triangle [p[0], p[1], p[2]] where coordinate `axis` is at least `floor`
 // (one clip of Sutherland and Hodgman), through `toWorld`: its box, empty when none is.
 template <class ToWorld>

@@ -9,12 +9,6 @@ namespace povrayfc {
 
 namespace {
 
-double Dot(const Vec3 &a, const Vec3 &b) { return a.x * b.x + a.y * b.y + a.z * b.z; }
-double Norm(const Vec3 &a) { return std::sqrt(Dot(a, a)); }
-Vec3 Cross(const Vec3 &a, const Vec3 &b) {
-    return Vec3{a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x};
-}
-
 Vec3 Centre(const Box &b) { return 0.5 * (b.lo + b.hi); }
 double HalfExtent(const Box &b) {
     const Vec3 e = b.Extent();

@@ -9,12 +9,6 @@ namespace povrayfc {
 
 namespace {
 
-
-double Dot(const Vec3 &a, const Vec3 &b) { return a.x * b.x + a.y * b.y + a.z * b.z; }
-double Norm(const Vec3 &a) { return std::sqrt(Dot(a, a)); }
-Vec3 Cross(const Vec3 &a, const Vec3 &b) {
-    return Vec3{a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x};
-}
 double MaxAbs(const Vec3 &a) { return std::max(std::fabs(a.x), std::max(std::fabs(a.y), std::fabs(a.z))); }
 Vec3 Origin(const Segment &s) { return Vec3{s.origin[0], s.origin[1], s.origin[2]}; }
 Vec3 Direction(const Segment &s) { return Vec3{s.direction[0], s.direction[1], s.direction[2]}; }

@@ -10,8 +10,6 @@ namespace povrayfc {
 
 namespace {
 
-double Dot(const Vec3 &a, const Vec3 &b) { return a.x * b.x + a.y * b.y + a.z * b.z; }
-
 // The depth each way from `centre`'s closest approach at which the ray (origin o, direction
 // d, |d|^2 = dd) is `radius` from the centre; negative when it never comes that close.
 double HalfChord(double distanceSquared, double radius, double dd) {

@@ -88,7 +88,6 @@ TEST(ShadowBlockers, UnplaceableInputNeverDarkens) {
 }
 
 Vec3 Unit(const Vec3 &v) { return (1.0 / std::sqrt(v.x * v.x + v.y * v.y + v.z * v.z)) * v; }
-Vec3 Cross(const Vec3 &a, const Vec3 &b) { return {a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x}; }
 
 // Invariant: whenever a ball darkens a stored test, every ray the stored segment may stand
 // for (its double-precision original, moved within the rounding) enters and leaves the
