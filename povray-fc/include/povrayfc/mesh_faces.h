@@ -41,7 +41,6 @@ class LastMeshFaces {
     bool Had(std::uint64_t meshKey, const MeshFace &face) const;
     // The meshes of the last frame with this key had one box, `bounds`.
     bool HadBox(std::uint64_t meshKey, const Box &bounds) const;
-    bool Empty() const { return keys_.empty(); }
 
   private:
     std::unordered_set<std::uint64_t> keys_;
