@@ -227,6 +227,13 @@ TEST(ChangeDetection, ATransformedMeshKeepsItsTrianglesOnlyWhileItsBoxStays) {
     c = CompareFrames(Frame(), Scene({before}), Frame(), Scene({inside}), false);
     ASSERT_EQ(c.hulls.size(), 2u);
     EXPECT_TRUE(c.hulls[0].hasTriangle && c.hulls[1].hasTriangle);
+    // Moved as well (another key): no triangle is kept, so every one is a hull, whatever
+    // its box.
+    UnitSignature moved = Mesh(4, 1.5, 8);
+    moved.meshBoxMustStay = true;
+    c = CompareFrames(Frame(), Scene({before}), Frame(), Scene({moved}), false);
+    ASSERT_EQ(c.hulls.size(), 2u);
+    EXPECT_TRUE(c.hulls[0].hasTriangle && c.hulls[1].hasTriangle);
 }
 
 TEST(ChangeDetection, TheHullsOfWhatAShadowTestMayPassAreListedApart) {

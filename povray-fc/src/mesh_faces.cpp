@@ -37,12 +37,15 @@ bool LastMeshFaces::Had(std::uint64_t meshKey, const MeshFace &face) const {
 
 bool MeshChangeHulls(std::uint64_t meshKey, const MeshFaces &faces, const Box &bounds, bool boxMustStay,
                      const LastMeshFaces &last, std::size_t maxHulls, std::vector<Hull> &out) {
-    if (boxMustStay && !last.HadBox(meshKey, bounds)) return false;
+    // A triangle kept needs the box kept too; a mesh none of whose triangles is kept (a
+    // moving one, whose key changes) is all hulls, and can meet a ray nowhere else.
+    const bool keeps = !boxMustStay || last.HadBox(meshKey, bounds);
     std::vector<Hull> hulls;
     for (const MeshFace &face : faces) {
         if (!last.Had(meshKey, face)) {
             hulls.push_back(MakeHull(face.box, face.triangle));
         } else {
+            if (!keeps) return false;
             for (int i = 0; i < face.rimCount; ++i) hulls.push_back(MakeHull(face.rims[i], face.triangle));
         }
         if (hulls.size() > maxHulls) return false;

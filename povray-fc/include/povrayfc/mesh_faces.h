@@ -54,8 +54,8 @@ class LastMeshFaces {
 // The hulls of a mesh whose shape changed (`meshKey`, `faces`, its box `bounds`): each face
 // none of the last frame's meshes with its key had, and the rims of the others; appended
 // to `out`. False, with `out` untouched, when they would be more than `maxHulls`, or when
-// `boxMustStay` (a transformed mesh: POV-Ray rounds its world box both ways) and the last
-// frame's meshes with its key had another box.
+// a face is kept, `boxMustStay` (a transformed mesh: POV-Ray rounds its world box both
+// ways) and the last frame's meshes with its key had another box.
 bool MeshChangeHulls(std::uint64_t meshKey, const MeshFaces &faces, const Box &bounds, bool boxMustStay,
                      const LastMeshFaces &last, std::size_t maxHulls, std::vector<Hull> &out);
 
