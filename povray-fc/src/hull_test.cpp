@@ -241,9 +241,6 @@ TEST(Hull, ClearanceHandPicked) {
     EXPECT_LT(diagonal, 2.0);
 }
 
-}  // namespace
-
-
 // A ray through a point of a triangle (or within its thickness of it) is never missed by
 // the hull's triangle, whatever the ray, the triangle's shape (slivers too) or the float
 // rounding of the segment; and the triangle refines its box: rays through the box that
@@ -319,3 +316,5 @@ TEST(Hull, TriangleHandPicked) {
     thickBox.lo.z = -0.02, thickBox.hi.z = 0.02;
     EXPECT_TRUE(MayMeet(Seg(Vec3{-3, 0.2, 0.01}, Vec3{1, 0, 0}, kInf), MakeHull(thickBox, thick)));
 }
+
+}  // namespace

@@ -119,8 +119,8 @@ class BlockTracer {
     std::uint32_t serial_ = 0;
     BlockRecord *old_ = nullptr;             // the stored record, when it may be reused from
     std::vector<std::uint8_t> oldDirty_;     // per old sample
-    // More than half of old_'s samples are dirty: the change covers the block, and its
-    // samples traced again keep no hits (describing them would cost every one of them).
+    // More than seven eighths of old_'s samples are dirty: the change covers the block, and
+    // its samples traced again keep no hits (describing them would cost every one of them).
     bool mostlyDirty_ = false;
     std::vector<std::uint32_t> oldIndex_;    // open addressing: old sample index + 1, 0 = empty
     std::uint32_t oldMask_ = 0;
